@@ -1,0 +1,39 @@
+#pragma once
+// Errors. InputError is for anything a user supplied (a file, a field, an option value): its message is
+// one line naming what was wrong, and the CLI prints it and exits non-zero. DIFFRAY_CHECK guards internal
+// invariants (a failure is a bug in diffray, not in the input) and throws InternalError.
+#include <stdexcept>
+#include <string>
+
+namespace diffray::core {
+
+/// Bad user input. `where` names the file, option or field (may be empty); `what` says what is wrong.
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& where, const std::string& what)
+      : std::runtime_error(where.empty() ? what : where + ": " + what), where_(where) {}
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string where_;
+};
+
+/// A broken internal invariant: a diffray bug.
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+/// Throws InputError unless `value` is finite and > 0.
+void requirePositive(const std::string& where, double value);
+/// Throws InputError unless `value` is finite.
+void requireFinite(const std::string& where, double value);
+
+}  // namespace diffray::core
+
+#define DIFFRAY_CHECK(cond)                                                                       \
+  do {                                                                                            \
+    if (!(cond))                                                                                  \
+      throw ::diffray::core::InternalError(std::string(__FILE__) + ":" + std::to_string(__LINE__) + \
+                                           ": check failed: " #cond);                             \
+  } while (0)

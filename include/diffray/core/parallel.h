@@ -1,0 +1,55 @@
+#pragma once
+// Deterministic parallel Monte Carlo. Work is cut into fixed chunks of `chunk_size` items; chunk c always
+// gets the random stream Rng(seed, c) and chunk results are combined in a fixed tree that depends only on
+// the number of chunks (tbb::parallel_deterministic_reduce with a simple partitioner). So the same seed
+// gives bit-identical results for any thread count. Threads: TBB's default (all cores) unless a
+// ThreadLimit is alive.
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "diffray/core/rng.h"
+
+namespace diffray::core {
+
+/// Limits TBB to `threads` worker threads while alive (0 = leave the default: all cores).
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads);
+  static int current();  ///< threads TBB may use now
+
+ private:
+  std::unique_ptr<tbb::global_control> control_;
+};
+
+/// Runs `body(acc, rng, begin, end)` over [0, count) in fixed chunks and merges the per-chunk
+/// accumulators with `acc.merge(other)` in a thread-count-independent order. `make()` builds an empty
+/// accumulator. `on_chunk(items)` is called after each chunk (e.g. a progress bar); it must be thread-safe.
+template <class Acc, class Make, class Body, class OnChunk>
+Acc deterministicReduce(std::uint64_t count, std::uint64_t chunk_size, std::uint64_t seed, Make make,
+                        Body body, OnChunk on_chunk) {
+  const std::uint64_t chunks = (count + chunk_size - 1) / chunk_size;
+  auto run = [&](const tbb::blocked_range<std::uint64_t>& range, Acc acc) {
+    for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
+      Rng rng(seed, c);
+      const std::uint64_t begin = c * chunk_size;
+      const std::uint64_t end = begin + chunk_size < count ? begin + chunk_size : count;
+      body(acc, rng, begin, end);
+      on_chunk(end - begin);
+    }
+    return acc;
+  };
+  auto join = [](Acc a, const Acc& b) {
+    a.merge(b);
+    return a;
+  };
+  if (chunks == 0) return make();
+  return tbb::parallel_deterministic_reduce(tbb::blocked_range<std::uint64_t>(0, chunks, 1), make(), run,
+                                            join, tbb::simple_partitioner());
+}
+
+}  // namespace diffray::core

@@ -1,0 +1,49 @@
+#pragma once
+// Triangle geometry shared by every intersector. A Mesh is a soup of triangles, each tagged with the
+// scene object (surface) it belongs to. Coordinates are metres in the world frame, stored in double;
+// intersectors may use float internally but report ray distances that callers refine in double.
+// Plain data: not synchronised, build it once and then share it read-only.
+#include <array>
+#include <vector>
+
+#include "diffray/core/math.h"
+
+namespace diffray::geometry {
+
+using core::Vec3;
+
+struct Mesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> object_of_triangle;  ///< scene object index of each triangle
+
+  /// Adds the rectangle centre ± half_x ± half_y (two triangles) for object `object`.
+  void addRect(const Vec3& centre, const Vec3& half_x, const Vec3& half_y, int object);
+  std::size_t triangleCount() const { return triangles.size(); }
+};
+
+/// A ray in double precision. Directions need not be normalised for intersection, but diffray's
+/// transport always passes unit directions so that t is a distance in metres.
+struct Ray {
+  Vec3 origin;
+  Vec3 dir;
+  double tnear = 0.0;
+  double tfar = 1e300;
+};
+
+/// The nearest hit along a ray: object < 0 means the ray escaped.
+struct Hit {
+  double t = 0.0;
+  int triangle = -1;
+  int object = -1;
+  bool valid() const { return object >= 0; }
+};
+
+/// Anything that finds the nearest hit. Implementations are thread-safe for concurrent intersect().
+class Intersector {
+ public:
+  virtual ~Intersector() = default;
+  virtual Hit intersect(const Ray& ray) const = 0;
+};
+
+}  // namespace diffray::geometry

@@ -1,0 +1,36 @@
+#pragma once
+// The signed-energy ray tracer (design.md §1). Rays leave a source with a wavelength and an energy,
+// are intersected with the scene (Embree), and at each occluder draw a shift (u', v') from its WBSDF
+// (paper eq. 8, angle-shift invariance: u_o = u_i + u'); the sign of W travels in the ray's energy.
+// Outgoing direction (λu_o, λv_o, ±√(1 − λ²(u_o² + v_o²))); an imaginary root is an evanescent wave:
+// the ray ends and its energy is tallied. Screens record and absorb rays.
+// Deterministic: the same seed gives identical tallies for any thread count (core/parallel.h).
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "diffray/receiver/screen.h"
+#include "diffray/transport/scene.h"
+
+namespace diffray::transport {
+
+struct TraceOptions {
+  std::uint64_t rays = 1'000'000;
+  std::uint64_t seed = 1;
+  int max_bounces = 32;
+  std::uint64_t chunk_rays = 16384;
+  std::function<void(std::uint64_t)> on_progress;  ///< called with rays done per chunk (thread-safe)
+};
+
+/// Signed energies (in the source's power units) of every fate a ray can meet.
+struct TraceResult {
+  std::vector<receiver::ScreenTally> screens;
+  double emitted = 0, absorbed = 0, evanescent = 0, escaped = 0, on_absorbers = 0, bounce_limit = 0;
+  std::uint64_t rays = 0;
+  std::uint64_t segments = 0;  ///< intersection queries made
+  void merge(const TraceResult& o);
+};
+
+TraceResult trace(const Scene& scene, const CollimatedSource& source, const TraceOptions& options);
+
+}  // namespace diffray::transport

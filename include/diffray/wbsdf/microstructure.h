@@ -1,0 +1,91 @@
+#pragma once
+// One-dimensional occluder microstructures t(x) = a(x)·e^{iΦ(x)} (paper eq. eq:microstructure) along an
+// occluder's local x axis, in metres, with their Wigner distributions W(x,u) in closed form (paper eq. 2,
+// eq:R_WDF; u in cycles per metre). A Microstructure knows how to integrate its own W over a table cell,
+// which is what WbsdfTable stores. Immutable after construction; all methods are thread-safe.
+#include <complex>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace diffray::wbsdf {
+
+class Microstructure {
+ public:
+  virtual ~Microstructure() = default;
+
+  virtual std::complex<double> transmittance(double x_m) const = 0;
+  /// Closed-form Wigner distribution W(x,u) (paper eq. 2). For line spectra (gratings), the weight of the
+  /// line nearest to u instead (see lineSpacing()).
+  virtual double wdf(double x_m, double u_per_m) const = 0;
+  /// (1/(x2−x1)) ∫_{x1}^{x2} ∫_{u1}^{u2} W(x,u) du dx: the cell value a WbsdfTable stores.
+  virtual double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const = 0;
+
+  /// Where t can be non-zero (or one period, for periodic structures).
+  virtual std::pair<double, double> support() const = 0;
+  virtual bool periodic() const { return false; }
+  /// True when t ≡ 1 beyond support() on the right (a half-plane's open side): rays pass straight.
+  virtual bool openBeyondSupport() const { return false; }
+  /// Smallest length that shapes W (a slit width, a grating period): sets the table's x resolution.
+  virtual double featureSize() const = 0;
+  /// Largest coherent length (the whole structure's span): sets the table's u resolution.
+  virtual double coherenceLength() const = 0;
+  /// > 0 for structures whose W is a sum of δ lines in u at multiples of this spacing (gratings).
+  virtual double lineSpacing() const { return 0.0; }
+};
+
+/// Openings [begin, end] in an opaque screen: a slit, N slits, a door, or a half-plane edge (end = +inf).
+/// W is the sum of the cross-Wigner distributions of every pair of openings (design.md §1: for two slits,
+/// W_r(x−d/2) + W_r(x+d/2) + 2cos(2πud)·W_r(x), the signed cross term lying midway between them).
+class Openings : public Microstructure {
+ public:
+  explicit Openings(std::vector<std::pair<double, double>> intervals_m);
+  static std::shared_ptr<Openings> slit(double width_m, double centre_m = 0.0);
+  static std::shared_ptr<Openings> slits(int count, double width_m, double spacing_m);
+  /// The half-plane x ≥ 0 is open; `table_extent_m` is how far past the edge the table reaches (beyond
+  /// it the structure is treated as fully open: W → δ(u)).
+  static std::shared_ptr<Openings> halfPlane(double table_extent_m);
+
+  std::complex<double> transmittance(double x_m) const override;
+  double wdf(double x_m, double u_per_m) const override;
+  double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const override;
+  std::pair<double, double> support() const override;
+  bool openBeyondSupport() const override { return half_plane_; }
+  double featureSize() const override;
+  double coherenceLength() const override;
+  const std::vector<std::pair<double, double>>& intervals() const { return intervals_; }
+
+ private:
+  /// Bound on |s| (the lag) at x: sets the u quadrature density.
+  double lagBound(double x_m) const;
+  std::vector<std::pair<double, double>> intervals_;
+  std::vector<double> breakpoints_;  ///< x where some pair's lag limits change slope (sorted)
+  bool half_plane_ = false;
+  double half_plane_extent_ = 0.0;
+};
+
+/// Sinusoidal phase grating t = exp(i(m/2)·sin(2πx/Λ)) (paper eq. for the sinusoidal grating):
+/// W = Σ_{q1,q2} J_q1 J_q2 cos(2πx(q1−q2)/Λ) δ(u − (q1+q2)/(2Λ)); orders carry J_q(m/2)² on average.
+class PhaseGrating : public Microstructure {
+ public:
+  PhaseGrating(double period_m, double modulation_m);
+  std::complex<double> transmittance(double x_m) const override;
+  double wdf(double x_m, double u_per_m) const override;
+  double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const override;
+  std::pair<double, double> support() const override { return {0.0, period_}; }
+  bool periodic() const override { return true; }
+  double featureSize() const override { return period_; }
+  double coherenceLength() const override { return period_; }
+  double lineSpacing() const override { return 0.5 / period_; }
+  double period() const { return period_; }
+
+ private:
+  /// Weight of line n, x-averaged over [x1, x2].
+  double lineWeight(int n, double x1_m, double x2_m) const;
+  double period_;
+  double modulation_;
+  int q_max_;
+  std::vector<double> bessel_;  ///< J_q(m/2) for q = −q_max … q_max
+};
+
+}  // namespace diffray::wbsdf

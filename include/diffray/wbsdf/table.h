@@ -1,0 +1,80 @@
+#pragma once
+// A tabulated one-dimensional WBSDF with importance sampling (design.md §1, paper section
+// "Implementation": "the pdf is calculated using the absolute values ... in the lookup table").
+//
+// Rows are x-cells of width dx on the occluder's local x axis (metres); columns are u-cells of width du
+// (cycles per metre) of the *shift* u' = u_o − u_i (angle-shift invariance, paper eq. 8 eq:transmission).
+// Cell (j,k) stores the x-averaged, u-integrated signed mass of W. Sampling at position x picks the row
+// containing x, then a column with probability |mass|/Σ|mass| (Walker alias table), then u' uniform in the
+// cell (continuous tables) or at the cell centre (line spectra, e.g. gratings). The ray's energy is
+// multiplied by weight = sign(mass)·Σ|mass|, so E[weight] = Σ mass = x-average of |t|²: energy is
+// conserved on average and the sign travels in the ray. Immutable after construction; thread-safe.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "diffray/wbsdf/microstructure.h"
+
+namespace diffray::wbsdf {
+
+struct TableLayout {
+  double x0_m = 0.0, dx_m = 1.0;       ///< row j covers [x0 + j dx, x0 + (j+1) dx)
+  int nx = 1;
+  double u0_per_m = 0.0, du_per_m = 1.0;  ///< column k covers [u0 + k du, u0 + (k+1) du)
+  int nu = 1;
+  bool periodic = false;        ///< x wraps modulo nx·dx
+  bool open_beyond = false;     ///< x past the last row: t = 1, rays pass straight (half-plane)
+  bool line_spectrum = false;   ///< sample cell centres instead of uniform positions in the cell
+};
+
+/// Options that choose a table's resolution from the wavelength and the microstructure's feature size.
+struct TableOptions {
+  double wavelength_m = 0.0;
+  /// Half-range of tabulated shifts u'. 0 → 2/λ (every shift that can leave a propagating ray for any
+  /// incidence). A smaller range (for near-normal incidence and small screens) saves memory; the mass
+  /// outside it is reported by truncatedMass().
+  double u_half_range_per_m = 0.0;
+  int cells_per_coherence = 32;  ///< du = 1/(this · coherence length)
+  int rows_per_feature = 64;     ///< dx = feature size / this
+  std::size_t max_cells = 40'000'000;
+};
+
+class WbsdfTable {
+ public:
+  WbsdfTable(TableLayout layout, std::vector<double> masses, double truncated_mass = 0.0);
+
+  /// Builds the table of a microstructure from its closed-form cell integrals (in parallel).
+  static std::shared_ptr<const WbsdfTable> build(const Microstructure& m, const TableOptions& options);
+
+  struct Sample {
+    double u_shift = 0.0;  ///< sampled u' (cycles per metre)
+    double weight = 0.0;   ///< sign(mass)·Σ|mass| of the row; 0 when the ray is absorbed (t = 0 there)
+  };
+  /// Samples u' at position x from two uniforms in [0,1).
+  Sample sample(double x_m, double xi1, double xi2) const;
+  /// Probability density of u' at x (per unit u; for line spectra, the probability of the cell).
+  double pdf(double x_m, double u_shift) const;
+  /// The tabulated W at (x, u'): mass/du (for line spectra, the mass of the cell).
+  double eval(double x_m, double u_shift) const;
+
+  const TableLayout& layout() const { return layout_; }
+  double mass(int row, int col) const { return masses_[static_cast<std::size_t>(row) * layout_.nu + col]; }
+  double rowAbsMass(int row) const { return row_abs_[row]; }
+  /// Signed mass of shifts outside the tabulated range, x-averaged over the whole table.
+  double truncatedMass() const { return truncated_mass_; }
+  /// Fraction of Σ|mass| that is negative: how signed this WBSDF is.
+  double negativeFraction() const;
+  std::size_t bytes() const;
+
+ private:
+  /// Row of x, or −1 outside a non-periodic table (−2 when open beyond it).
+  int rowOf(double x_m) const;
+  TableLayout layout_;
+  std::vector<double> masses_;
+  std::vector<double> row_abs_;
+  std::vector<float> alias_prob_;
+  std::vector<std::uint32_t> alias_;
+  double truncated_mass_;
+};
+
+}  // namespace diffray::wbsdf

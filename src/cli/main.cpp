@@ -1,0 +1,37 @@
+// The `diffray` program: parses the command line with CLI11 and dispatches to a subcommand. Any error in
+// the user's input ends the program with one line on stderr and exit code 2; no output file is left
+// half-written (outputs are written atomically).
+#include <iostream>
+
+#include "diffray/cli/commands.h"
+#include "diffray/core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"diffray: ray tracing that hears and sees diffraction, with the Wave BSDF (WBSDF)"};
+  app.set_version_flag("--version", std::string("diffray ") + DIFFRAY_VERSION);
+  app.require_subcommand(1);
+  diffray::cli::CommonOptions common;
+  diffray::cli::Runner validate = diffray::cli::addValidateCommand(app, common);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "diffray: error: " << e.what() << " (see diffray --help)\n";
+    return 2;
+  }
+  try {
+    if (app.got_subcommand("validate")) return validate();
+    return 2;
+  } catch (const diffray::core::InputError& e) {
+    std::cerr << "diffray: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "diffray: internal error (please report): " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,45 @@
+#include "diffray/core/math.h"
+
+#include <Eigen/Eigenvalues>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "diffray/core/error.h"
+
+namespace diffray::core {
+
+namespace {
+GaussLegendre computeGaussLegendre(int n) {
+  // Golub–Welsch: the nodes are the eigenvalues of the Jacobi matrix of the Legendre recurrence,
+  // beta_k = k / sqrt(4k^2 - 1); the weights are 2·(first eigenvector component)^2.
+  Eigen::MatrixXd jacobi = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 1; k < n; ++k) {
+    const double beta = k / std::sqrt(4.0 * k * k - 1.0);
+    jacobi(k, k - 1) = beta;
+    jacobi(k - 1, k) = beta;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(jacobi);
+  GaussLegendre rule;
+  rule.nodes.resize(n);
+  rule.weights.resize(n);
+  for (int i = 0; i < n; ++i) {
+    rule.nodes[i] = solver.eigenvalues()(i);
+    const double v0 = solver.eigenvectors()(0, i);
+    rule.weights[i] = 2.0 * v0 * v0;
+  }
+  return rule;
+}
+}  // namespace
+
+const GaussLegendre& gaussLegendre(int n) {
+  DIFFRAY_CHECK(n >= 1 && n <= 512);
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<GaussLegendre>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[n];
+  if (!slot) slot = std::make_unique<GaussLegendre>(computeGaussLegendre(n));
+  return *slot;
+}
+
+}  // namespace diffray::core

@@ -1,0 +1,112 @@
+#include "diffray/geometry/embree_scene.h"
+
+#include <limits>
+#include <string>
+
+#include "diffray/core/error.h"
+
+namespace diffray::geometry {
+
+namespace {
+void embreeError(void*, RTCError code, const char* message) {
+  // Embree calls this from inside its API; turning it into an exception here would unwind through C
+  // frames, so remember the message and let the caller check rtcGetDeviceError.
+  (void)code;
+  (void)message;
+}
+
+void throwIfError(RTCDevice device, const char* what) {
+  const RTCError err = rtcGetDeviceError(device);
+  if (err != RTC_ERROR_NONE)
+    throw core::InternalError(std::string("Embree error ") + std::to_string(static_cast<int>(err)) + " in " +
+                              what);
+}
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Mesh& mesh) : object_of_triangle_(mesh.object_of_triangle) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw core::InternalError("cannot create an Embree device");
+  rtcSetDeviceErrorFunction(device_, embreeError, nullptr);
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+  RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                mesh.vertices.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                 RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                                 mesh.triangles.size()));
+  throwIfError(device_, "buffer allocation");
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = static_cast<float>(mesh.vertices[i][c]);
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int c = 0; c < 3; ++c) indices[3 * i + c] = static_cast<unsigned>(mesh.triangles[i][c]);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene_, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene_);
+  throwIfError(device_, "scene build");
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+Hit EmbreeScene::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(ray.origin.x());
+  rh.ray.org_y = static_cast<float>(ray.origin.y());
+  rh.ray.org_z = static_cast<float>(ray.origin.z());
+  rh.ray.dir_x = static_cast<float>(ray.dir.x());
+  rh.ray.dir_y = static_cast<float>(ray.dir.y());
+  rh.ray.dir_z = static_cast<float>(ray.dir.z());
+  rh.ray.tnear = static_cast<float>(ray.tnear);
+  rh.ray.tfar = ray.tfar > 3e38 ? std::numeric_limits<float>::infinity() : static_cast<float>(ray.tfar);
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  Hit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.t = rh.ray.tfar;
+  hit.triangle = static_cast<int>(rh.hit.primID);
+  hit.object = object_of_triangle_[rh.hit.primID];
+  return hit;
+}
+
+Hit BruteForceScene::intersect(const Ray& ray) const {
+  Hit best;
+  double best_t = ray.tfar;
+  for (std::size_t i = 0; i < mesh_.triangles.size(); ++i) {
+    // Möller–Trumbore in double.
+    const Vec3& v0 = mesh_.vertices[mesh_.triangles[i][0]];
+    const Vec3 e1 = mesh_.vertices[mesh_.triangles[i][1]] - v0;
+    const Vec3 e2 = mesh_.vertices[mesh_.triangles[i][2]] - v0;
+    const Vec3 p = ray.dir.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-300) continue;
+    const double inv = 1.0 / det;
+    const Vec3 s = ray.origin - v0;
+    const double b1 = s.dot(p) * inv;
+    if (b1 < 0.0 || b1 > 1.0) continue;
+    const Vec3 q = s.cross(e1);
+    const double b2 = ray.dir.dot(q) * inv;
+    if (b2 < 0.0 || b1 + b2 > 1.0) continue;
+    const double t = e2.dot(q) * inv;
+    if (t < ray.tnear || t >= best_t) continue;
+    best_t = t;
+    best.t = t;
+    best.triangle = static_cast<int>(i);
+    best.object = mesh_.object_of_triangle[i];
+  }
+  return best;
+}
+
+}  // namespace diffray::geometry

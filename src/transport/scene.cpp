@@ -1,0 +1,55 @@
+#include "diffray/transport/scene.h"
+
+#include <cmath>
+
+#include "diffray/core/error.h"
+
+namespace diffray::transport {
+
+double CollimatedSource::power() const {
+  return intensity * 4.0 * half_x_m * half_y_m * std::abs(dir.normalized().dot(frame.n));
+}
+
+int Scene::addObject(ObjectKind kind, int index, const geometry::Frame& f, double hx, double hy) {
+  core::requirePositive("object half-width", hx);
+  core::requirePositive("object half-height", hy);
+  const int id = static_cast<int>(objects_.size());
+  objects_.push_back({kind, index, nullptr});
+  mesh_.addRect(f.origin, f.ex * hx, f.ey * hy, id);
+  return id;
+}
+
+int Scene::addOccluder(Occluder o) {
+  if (!o.table_x) throw core::InputError("occluder", "needs a WBSDF table along x");
+  occluders_.push_back(std::move(o));
+  const auto& b = occluders_.back();
+  return addObject(ObjectKind::Occluder, static_cast<int>(occluders_.size()) - 1, b.frame, b.half_x_m, b.half_y_m);
+}
+
+int Scene::addScreen(receiver::Screen s) {
+  if (s.nx < 1 || s.ny < 1) throw core::InputError("screen", "needs at least one bin along x and y");
+  screens_.push_back(s);
+  return addObject(ObjectKind::Screen, static_cast<int>(screens_.size()) - 1, s.frame, s.half_x_m, s.half_y_m);
+}
+
+int Scene::addAbsorber(Absorber a) {
+  absorbers_.push_back(a);
+  return addObject(ObjectKind::Absorber, static_cast<int>(absorbers_.size()) - 1, a.frame, a.half_x_m, a.half_y_m);
+}
+
+void Scene::build(bool brute_force) {
+  // Frames are stored in the vectors, which no longer grow: point the object table at them now.
+  for (auto& ref : objects_) {
+    switch (ref.kind) {
+      case ObjectKind::Occluder: ref.frame = &occluders_[ref.index].frame; break;
+      case ObjectKind::Screen: ref.frame = &screens_[ref.index].frame; break;
+      case ObjectKind::Absorber: ref.frame = &absorbers_[ref.index].frame; break;
+    }
+  }
+  if (brute_force)
+    intersector_ = std::make_unique<geometry::BruteForceScene>(mesh_);
+  else
+    intersector_ = std::make_unique<geometry::EmbreeScene>(mesh_);
+}
+
+}  // namespace diffray::transport

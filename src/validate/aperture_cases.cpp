@@ -1,0 +1,221 @@
+// The aperture cases of `diffray validate`: slits, double slit, rectangle, Fresnel slit and a door.
+// Each compares the traced screen with an oracle from diffray::reference (design.md §3).
+#include <chrono>
+#include <cmath>
+
+#include "diffray/core/error.h"
+#include "diffray/core/math.h"
+#include "diffray/reference/fraunhofer.h"
+#include "diffray/reference/fresnel.h"
+#include "diffray/reference/rayleigh_sommerfeld.h"
+#include "diffray/validate/case.h"
+#include "diffray/validate/slit_setup.h"
+
+namespace diffray::validate {
+
+namespace {
+
+double one(const Params& p, const std::string& name) { return p.at(name).at(0); }
+
+int binsOf(const Params& p, const std::string& name) {
+  const double b = one(p, name);
+  if (!(b >= 3 && b <= 100000 && std::floor(b) == b))
+    throw core::InputError("--" + name, "must be a whole number of bins from 3 to 100000");
+  return static_cast<int>(b);
+}
+
+std::uint64_t raysOf(const RunOptions& o, std::uint64_t fallback) { return o.rays ? o.rays : fallback; }
+
+template <class F>
+CaseResult timed(const std::string& name, F&& run) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CaseResult r;
+  r.name = name;
+  run(r);
+  scoreRows(r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace
+
+CaseInfo slitFraunhoferCase() {
+  CaseInfo c{"slit-fraunhofer", "single slit, far field, vs a²·sinc²(a·u) (Fraunhofer)", {}, 8'000'000, {}};
+  c.params = {{"width", {100e-6}, "slit width a (m)"},
+              {"wavelength", {500e-9}, "wavelength (m)"},
+              {"distance", {5.0}, "slit to screen (m); far field needs distance >> a²/λ"},
+              {"screen", {0.0}, "screen half-width (m); 0 = three diffraction zeros"},
+              {"bins", {151}, "screen bins"}};
+  c.run = [](const Params& p, const RunOptions& o) {
+    return timed("slit-fraunhofer", [&](CaseResult& r) {
+      const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
+      core::requirePositive("--width", a);
+      core::requirePositive("--wavelength", lambda);
+      core::requirePositive("--distance", z);
+      const auto slit = wbsdf::Openings::slit(a);
+      ApertureSetup s;
+      s.along_x = slit.get();
+      s.wavelength_m = lambda;
+      s.distance_m = z;
+      s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 3.0 * lambda * z / a;
+      s.bins_x = binsOf(p, "bins");
+      s.reference = [=](double x, double) {
+        return reference::farFieldScreenIntensity2D(x, z, lambda,
+                                                    reference::slitFraunhofer(reference::screenU(x, z, lambda), a));
+      };
+      runAperture(s, o, raysOf(o, 8'000'000), r);
+      r.extra["fresnel_number"] = a * a / (lambda * z);
+    });
+  };
+  return c;
+}
+
+CaseInfo doubleSlitCase() {
+  CaseInfo c{"double-slit", "two slits, far field, vs 4a²·cos²(πdu)·sinc²(au) (Young)", {}, 8'000'000, {}};
+  c.params = {{"width", {50e-6}, "slit width a (m)"},
+              {"spacing", {250e-6}, "centre-to-centre spacing d (m)"},
+              {"wavelength", {500e-9}, "wavelength (m)"},
+              {"distance", {10.0}, "slits to screen (m)"},
+              {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero"},
+              {"bins", {201}, "screen bins"}};
+  c.run = [](const Params& p, const RunOptions& o) {
+    return timed("double-slit", [&](CaseResult& r) {
+      const double a = one(p, "width"), d = one(p, "spacing"), lambda = one(p, "wavelength"),
+                   z = one(p, "distance");
+      core::requirePositive("--width", a);
+      core::requirePositive("--spacing", d);
+      core::requirePositive("--wavelength", lambda);
+      core::requirePositive("--distance", z);
+      const auto slits = wbsdf::Openings::slits(2, a, d);
+      ApertureSetup s;
+      s.along_x = slits.get();
+      s.wavelength_m = lambda;
+      s.distance_m = z;
+      s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : lambda * z / a;
+      s.bins_x = binsOf(p, "bins");
+      s.reference = [=](double x, double) {
+        const double u = reference::screenU(x, z, lambda);
+        return reference::farFieldScreenIntensity2D(x, z, lambda, reference::doubleSlitFraunhofer(u, a, d));
+      };
+      runAperture(s, o, raysOf(o, 8'000'000), r);
+    });
+  };
+  return c;
+}
+
+CaseInfo rectApertureCase() {
+  CaseInfo c{"rect-aperture", "rectangular aperture on a 2D screen vs (ab/λz)²·sinc²·sinc²", {}, 16'000'000, {}};
+  c.params = {{"width", {100e-6}, "aperture width a along x (m)"},
+              {"height", {150e-6}, "aperture height b along y (m)"},
+              {"wavelength", {500e-9}, "wavelength (m)"},
+              {"distance", {5.0}, "aperture to screen (m)"},
+              {"bins", {41}, "screen bins along each axis"}};
+  c.run = [](const Params& p, const RunOptions& o) {
+    return timed("rect-aperture", [&](CaseResult& r) {
+      const double a = one(p, "width"), b = one(p, "height"), lambda = one(p, "wavelength"),
+                   z = one(p, "distance");
+      core::requirePositive("--width", a);
+      core::requirePositive("--height", b);
+      core::requirePositive("--wavelength", lambda);
+      core::requirePositive("--distance", z);
+      const auto sx = wbsdf::Openings::slit(a);
+      const auto sy = wbsdf::Openings::slit(b);
+      ApertureSetup s;
+      s.along_x = sx.get();
+      s.along_y = sy.get();
+      s.wavelength_m = lambda;
+      s.distance_m = z;
+      s.screen_half_x_m = 2.0 * lambda * z / a;
+      s.screen_half_y_m = 2.0 * lambda * z / b;
+      s.bins_x = s.bins_y = binsOf(p, "bins");
+      s.reference = [=](double x, double y) {
+        // 3D far field: |T(u,v)|²·cos²θ/(λr)², u = x/(rλ), v = y/(rλ).
+        const double rr = std::sqrt(x * x + y * y + z * z);
+        const double t2 = reference::rectFraunhofer(x / (rr * lambda), y / (rr * lambda), a, b);
+        return t2 * (z / rr) * (z / rr) / (lambda * rr * lambda * rr);
+      };
+      runAperture(s, o, raysOf(o, 16'000'000), r);
+    });
+  };
+  return c;
+}
+
+CaseInfo slitFresnelCase() {
+  CaseInfo c{"slit-fresnel", "slit in the near field (Fresnel number ~4) vs the Fresnel-integral pattern", {},
+             8'000'000, {}};
+  c.params = {{"width", {1e-3}, "slit width a (m)"},
+              {"wavelength", {500e-9}, "wavelength (m)"},
+              {"distance", {0.5}, "slit to screen (m); Fresnel number a²/(λz)"},
+              {"screen", {0.0}, "screen half-width (m); 0 = 1.5 a"},
+              {"bins", {151}, "screen bins"}};
+  c.run = [](const Params& p, const RunOptions& o) {
+    return timed("slit-fresnel", [&](CaseResult& r) {
+      const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
+      core::requirePositive("--width", a);
+      core::requirePositive("--wavelength", lambda);
+      core::requirePositive("--distance", z);
+      const auto slit = wbsdf::Openings::slit(a);
+      ApertureSetup s;
+      s.along_x = slit.get();
+      s.wavelength_m = lambda;
+      s.distance_m = z;
+      s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 1.5 * a;
+      s.bins_x = binsOf(p, "bins");
+      s.rows_per_feature = 512;
+      s.reference = [=](double x, double) { return reference::fresnelSlitIntensity(x, a, lambda, z); };
+      runAperture(s, o, raysOf(o, 8'000'000), r);
+      r.extra["fresnel_number"] = a * a / (lambda * z);
+    });
+  };
+  return c;
+}
+
+CaseInfo doorRsCase() {
+  CaseInfo c{"door-rs", "0.9 m doorway (2D), line 2 m behind, vs Rayleigh–Sommerfeld quadrature", {}, 8'000'000,
+             {}};
+  c.params = {{"width", {0.9}, "opening width (m)"},
+              {"freq", {125, 250, 500, 1000}, "frequencies (Hz), comma-separated"},
+              {"distance", {2.0}, "opening to the observation line (m)"},
+              {"screen", {3.0}, "half-length of the observation line (m)"},
+              {"bins", {121}, "bins along the line"},
+              {"temperature", {20.0}, "air temperature (°C), sets the speed of sound"}};
+  c.run = [](const Params& p, const RunOptions& o) {
+    return timed("door-rs", [&](CaseResult& r) {
+      const double a = one(p, "width"), z = one(p, "distance");
+      core::requirePositive("--width", a);
+      core::requirePositive("--distance", z);
+      core::requirePositive("--screen", one(p, "screen"));
+      const double c_air = core::speedOfSound(one(p, "temperature"));
+      const auto door = wbsdf::Openings::slit(a);
+      const std::uint64_t rays = raysOf(o, 8'000'000);
+      const auto& freqs = p.at("freq");
+      for (double f : freqs) {
+        core::requirePositive("--freq", f);
+        const double lambda = c_air / f;
+        ApertureSetup s;
+        s.along_x = door.get();
+        s.wavelength_m = lambda;
+        s.distance_m = z;
+        s.screen_half_x_m = one(p, "screen");
+        s.bins_x = binsOf(p, "bins");
+        const std::vector<std::pair<double, double>> opening{{-0.5 * a, 0.5 * a}};
+        s.reference = [=](double x, double) {
+          return reference::rayleighSommerfeldIntensity2D(opening, x, z, lambda);
+        };
+        CaseResult part;
+        runAperture(s, o, rays / freqs.size(), part);
+        const std::string label = "f=" + std::to_string(static_cast<int>(std::lround(f))) + "Hz";
+        for (Row row : part.rows) {
+          row.label = label;
+          r.rows.push_back(row);
+        }
+        r.rays += part.rays;
+        r.negative_energy_fraction = std::max(r.negative_energy_fraction, part.negative_energy_fraction);
+        for (const auto& [k, v] : part.extra) r.extra[k + "[" + label + "]"] = v;
+      }
+    });
+  };
+  return c;
+}
+
+}  // namespace diffray::validate

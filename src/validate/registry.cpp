@@ -1,0 +1,75 @@
+#include <algorithm>
+#include <cmath>
+
+#include "diffray/core/error.h"
+#include "diffray/validate/case.h"
+
+namespace diffray::validate {
+
+// Defined in the case files.
+CaseInfo slitFraunhoferCase();
+CaseInfo doubleSlitCase();
+CaseInfo rectApertureCase();
+CaseInfo slitFresnelCase();
+CaseInfo doorRsCase();
+CaseInfo gratingOrdersCase();
+
+const std::vector<CaseInfo>& cases() {
+  static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
+                                         slitFresnelCase(),    doorRsCase(),     gratingOrdersCase()};
+  return all;
+}
+
+const CaseInfo* findCase(const std::string& name) {
+  for (const auto& c : cases())
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+Params resolveParams(const CaseInfo& info, const Params& given) {
+  Params out;
+  for (const auto& p : info.params) out[p.name] = p.defaults;
+  for (const auto& [name, values] : given) {
+    auto it = out.find(name);
+    if (it == out.end()) {
+      std::string takes;
+      for (const auto& p : info.params) takes += (takes.empty() ? "--" : ", --") + p.name;
+      throw core::InputError("--" + name, "does not apply to case " + info.name + " (it takes " + takes + ")");
+    }
+    if (values.empty()) throw core::InputError("--" + name, "needs a value");
+    for (double v : values) core::requireFinite("--" + name, v);
+    it->second = values;
+  }
+  return out;
+}
+
+void scoreRows(CaseResult& r) {
+  // Rows with the same label form one pattern (one frequency of a sweep); errors are relative to that
+  // pattern's peak, and the case's figures are the worst over its patterns.
+  std::map<std::string, double> peak;
+  for (const Row& row : r.rows) peak[row.label] = std::max(peak[row.label], std::abs(row.reference));
+  std::map<std::string, double> max_err, sum_sq, count;
+  r.max_std_error_rel_peak = 0.0;
+  for (const Row& row : r.rows) {
+    const double pk = peak[row.label] > 0 ? peak[row.label] : 1.0;
+    const double e = std::abs(row.traced - row.reference) / pk;
+    max_err[row.label] = std::max(max_err[row.label], e);
+    sum_sq[row.label] += e * e;
+    count[row.label] += 1.0;
+    r.max_std_error_rel_peak = std::max(r.max_std_error_rel_peak, row.std_error / pk);
+  }
+  r.max_abs_error_rel_peak = 0.0;
+  r.rms_error_rel_peak = 0.0;
+  for (const auto& [label, e] : max_err) {
+    const double rms = std::sqrt(sum_sq[label] / count[label]);
+    r.max_abs_error_rel_peak = std::max(r.max_abs_error_rel_peak, e);
+    r.rms_error_rel_peak = std::max(r.rms_error_rel_peak, rms);
+    if (max_err.size() > 1) {
+      r.extra["max_abs_error_rel_peak[" + label + "]"] = e;
+      r.extra["rms_error_rel_peak[" + label + "]"] = rms;
+    }
+  }
+  r.passed = r.max_abs_error_rel_peak <= r.target_rel_peak;
+}
+
+}  // namespace diffray::validate

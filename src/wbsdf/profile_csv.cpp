@@ -1,0 +1,145 @@
+#include "diffray/wbsdf/profile_csv.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "diffray/core/error.h"
+
+namespace diffray::wbsdf {
+
+namespace {
+
+constexpr double kMaxResampledPoints = 1u << 26;
+const char* const kColumnNames[3] = {"x", "amplitude", "phase"};
+
+std::string trim(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return "";
+  const auto end = s.find_last_not_of(" \t\r\n");
+  return s.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream stream(line);
+  while (std::getline(stream, field, ',')) fields.push_back(trim(field));
+  if (!line.empty() && line.back() == ',') fields.emplace_back();  // trailing empty column
+  return fields;
+}
+
+/// Parses the whole of `text` as a double (strtod, so "nan" and "inf" parse and are caught by the caller).
+bool parseNumber(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return false;
+  // Overflow yields ±HUGE_VAL (reported as non-finite); underflow to 0 or a denormal is harmless.
+  if (errno == ERANGE && std::abs(value) < 1.0) errno = 0;
+  return true;
+}
+
+}  // namespace
+
+ProfilePoints readProfileCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw core::InputError(path, "cannot open the profile file");
+
+  ProfilePoints points;
+  std::string raw;
+  int line_no = 0;
+  bool seen_first_content_line = false;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    const std::string line = trim(raw.substr(0, raw.find('#')));
+    if (line.empty()) continue;
+    const std::string where = path + ":" + std::to_string(line_no);
+    const std::vector<std::string> fields = splitFields(line);
+
+    double first = 0.0;
+    if (!seen_first_content_line) {
+      seen_first_content_line = true;
+      if (!fields.empty() && !parseNumber(fields[0], first)) continue;  // a header line
+    }
+    if (fields.size() != 3) {
+      throw core::InputError(where, "expected 3 columns (x, amplitude, phase), found " +
+                                        std::to_string(fields.size()));
+    }
+    double values[3] = {0.0, 0.0, 0.0};
+    for (int c = 0; c < 3; ++c) {
+      if (!parseNumber(fields[static_cast<size_t>(c)], values[c])) {
+        throw core::InputError(where, std::string("column '") + kColumnNames[c] + "' is not a number: '" +
+                                          fields[static_cast<size_t>(c)] + "'");
+      }
+      if (!std::isfinite(values[c]) || errno == ERANGE) {
+        throw core::InputError(where, std::string("column '") + kColumnNames[c] +
+                                          "' is not finite: '" + fields[static_cast<size_t>(c)] + "'");
+      }
+    }
+    const double x_m = values[0], amplitude = values[1], phase_rad = values[2];
+    if (amplitude < 0.0 || amplitude > 1.0) {
+      std::ostringstream s;
+      s << "amplitude " << amplitude << " is outside [0, 1]";
+      throw core::InputError(where, s.str());
+    }
+    if (!points.x_m.empty() && !(x_m > points.x_m.back())) {
+      std::ostringstream s;
+      s.precision(17);
+      s << "x = " << x_m << " m is not greater than the previous x = " << points.x_m.back() << " m";
+      throw core::InputError(where, s.str());
+    }
+    points.x_m.push_back(x_m);
+    points.amplitude.push_back(amplitude);
+    points.phase_rad.push_back(phase_rad);
+  }
+  if (in.bad()) throw core::InputError(path + ":" + std::to_string(line_no), "read error");
+  if (points.x_m.size() < 2) {
+    throw core::InputError(path + ":" + std::to_string(line_no),
+                           "a profile needs at least 2 data rows, found " +
+                               std::to_string(points.x_m.size()) + " (end of file)");
+  }
+  return points;
+}
+
+SampledProfile resampleProfile(const ProfilePoints& points, double dx_m) {
+  const std::string where = "resampleProfile";
+  core::requirePositive(where + ": dx_m", dx_m);
+  const size_t n_points = points.x_m.size();
+  if (points.amplitude.size() != n_points || points.phase_rad.size() != n_points) {
+    throw core::InputError(where, "x, amplitude and phase columns differ in length");
+  }
+  if (n_points < 2) throw core::InputError(where, "a profile needs at least 2 points");
+  const double x_first = points.x_m.front();
+  const double x_last = points.x_m.back();
+  const double count = std::floor((x_last - x_first) / dx_m + 1e-9) + 1.0;
+  if (!std::isfinite(count) || count > kMaxResampledPoints) {
+    std::ostringstream s;
+    s << "dx = " << dx_m << " m over a span of " << (x_last - x_first) << " m gives too many samples";
+    throw core::InputError(where, s.str());
+  }
+
+  SampledProfile profile;
+  profile.x0_m = x_first;
+  profile.dx_m = dx_m;
+  const size_t n = static_cast<size_t>(count);
+  profile.t.resize(n);
+  size_t seg = 0;  // points.x_m[seg] ≤ x < points.x_m[seg + 1]
+  for (size_t j = 0; j < n; ++j) {
+    const double x_m = std::min(x_first + static_cast<double>(j) * dx_m, x_last);
+    while (seg + 2 < n_points && x_m >= points.x_m[seg + 1]) ++seg;
+    const double x_a = points.x_m[seg], x_b = points.x_m[seg + 1];
+    const double w = std::clamp((x_m - x_a) / (x_b - x_a), 0.0, 1.0);
+    const double amplitude = (1.0 - w) * points.amplitude[seg] + w * points.amplitude[seg + 1];
+    const double phase_rad = (1.0 - w) * points.phase_rad[seg] + w * points.phase_rad[seg + 1];
+    profile.t[j] = amplitude * std::exp(std::complex<double>(0.0, phase_rad));  // eq:microstructure
+  }
+  return profile;
+}
+
+}  // namespace diffray::wbsdf

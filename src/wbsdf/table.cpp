@@ -1,0 +1,177 @@
+#include "diffray/wbsdf/table.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "diffray/core/error.h"
+
+namespace diffray::wbsdf {
+
+namespace {
+// Walker/Vose alias table over |masses| of one row; returns Σ|mass|.
+double buildAlias(const double* masses, int n, float* prob, std::uint32_t* alias) {
+  double total = 0.0;
+  for (int k = 0; k < n; ++k) total += std::abs(masses[k]);
+  if (total <= 0.0) {
+    for (int k = 0; k < n; ++k) {
+      prob[k] = 1.0f;
+      alias[k] = static_cast<std::uint32_t>(k);
+    }
+    return 0.0;
+  }
+  std::vector<double> scaled(n);
+  std::vector<int> small, large;
+  small.reserve(n);
+  large.reserve(n);
+  for (int k = 0; k < n; ++k) {
+    scaled[k] = std::abs(masses[k]) * n / total;
+    (scaled[k] < 1.0 ? small : large).push_back(k);
+  }
+  while (!small.empty() && !large.empty()) {
+    const int s = small.back();
+    small.pop_back();
+    const int l = large.back();
+    prob[s] = static_cast<float>(scaled[s]);
+    alias[s] = static_cast<std::uint32_t>(l);
+    scaled[l] -= 1.0 - scaled[s];
+    if (scaled[l] < 1.0) {
+      large.pop_back();
+      small.push_back(l);
+    }
+  }
+  for (int k : small) prob[k] = 1.0f, alias[k] = static_cast<std::uint32_t>(k);
+  for (int k : large) prob[k] = 1.0f, alias[k] = static_cast<std::uint32_t>(k);
+  return total;
+}
+}  // namespace
+
+WbsdfTable::WbsdfTable(TableLayout layout, std::vector<double> masses, double truncated_mass)
+    : layout_(layout), masses_(std::move(masses)), truncated_mass_(truncated_mass) {
+  DIFFRAY_CHECK(layout_.nx >= 1 && layout_.nu >= 1 && layout_.dx_m > 0 && layout_.du_per_m > 0);
+  DIFFRAY_CHECK(masses_.size() == static_cast<std::size_t>(layout_.nx) * layout_.nu);
+  row_abs_.resize(layout_.nx);
+  alias_prob_.resize(masses_.size());
+  alias_.resize(masses_.size());
+  tbb::parallel_for(0, layout_.nx, [&](int j) {
+    const std::size_t off = static_cast<std::size_t>(j) * layout_.nu;
+    row_abs_[j] = buildAlias(&masses_[off], layout_.nu, &alias_prob_[off], &alias_[off]);
+  });
+}
+
+std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, const TableOptions& o) {
+  core::requirePositive("wavelength", o.wavelength_m);
+  TableLayout L;
+  const auto [x_lo, x_hi] = m.support();
+  L.periodic = m.periodic();
+  L.open_beyond = m.openBeyondSupport();
+  L.x0_m = x_lo;
+  const double feature = std::min(m.featureSize(), x_hi - x_lo);
+  // Rows: fine enough for the feature, and for the half-plane (whose W varies on the scale of λ) at
+  // least 8 per wavelength.
+  double dx = feature / o.rows_per_feature;
+  if (L.open_beyond) dx = std::min(dx, o.wavelength_m / 8.0);
+  L.nx = std::max(1, static_cast<int>(std::ceil((x_hi - x_lo) / dx)));
+  L.dx_m = (x_hi - x_lo) / L.nx;
+
+  const double half_range = o.u_half_range_per_m > 0 ? o.u_half_range_per_m : 2.0 / o.wavelength_m;
+  if (m.lineSpacing() > 0) {
+    L.line_spectrum = true;
+    L.du_per_m = m.lineSpacing();
+    const int n_half = static_cast<int>(std::floor(half_range / L.du_per_m));
+    L.nu = 2 * n_half + 1;
+    L.u0_per_m = -(n_half + 0.5) * L.du_per_m;  // cells centred on the lines
+  } else {
+    L.nu = std::max(2, static_cast<int>(std::ceil(2.0 * half_range * o.cells_per_coherence *
+                                                  m.coherenceLength())));
+    L.nu += L.nu % 2;  // symmetric about u' = 0
+    L.du_per_m = 2.0 * half_range / L.nu;
+    L.u0_per_m = -half_range;
+  }
+  const std::size_t cells = static_cast<std::size_t>(L.nx) * L.nu;
+  if (cells > o.max_cells)
+    throw core::InputError("WBSDF table", std::to_string(L.nx) + " x " + std::to_string(L.nu) +
+                                              " cells exceed the limit of " + std::to_string(o.max_cells) +
+                                              "; narrow the u range or coarsen the resolution");
+  std::vector<double> masses(cells);
+  std::vector<double> row_total(L.nx);
+  tbb::parallel_for(0, L.nx, [&](int j) {
+    const double x1 = L.x0_m + j * L.dx_m, x2 = x1 + L.dx_m;
+    double sum = 0.0;
+    for (int k = 0; k < L.nu; ++k) {
+      const double u1 = L.u0_per_m + k * L.du_per_m;
+      const double v = m.cellMass(x1, x2, u1, u1 + L.du_per_m);
+      masses[static_cast<std::size_t>(j) * L.nu + k] = v;
+      sum += v;
+    }
+    // Σ_u W = |t|² (the u-marginal, design.md §1): what the row misses lies outside the u range.
+    double t2 = 0.0;
+    const int probes = 16;
+    for (int p = 0; p < probes; ++p) t2 += std::norm(m.transmittance(x1 + (p + 0.5) * L.dx_m / probes));
+    row_total[j] = t2 / probes - sum;
+  });
+  double truncated = 0.0;
+  for (double r : row_total) truncated += r;
+  return std::make_shared<WbsdfTable>(L, std::move(masses), truncated / L.nx);
+}
+
+int WbsdfTable::rowOf(double x) const {
+  double r = (x - layout_.x0_m) / layout_.dx_m;
+  if (layout_.periodic) {
+    r = std::fmod(r, static_cast<double>(layout_.nx));
+    if (r < 0) r += layout_.nx;
+  } else if (r < 0.0 || r >= layout_.nx) {
+    return (layout_.open_beyond && r >= layout_.nx) ? -2 : -1;
+  }
+  return std::min(static_cast<int>(r), layout_.nx - 1);
+}
+
+WbsdfTable::Sample WbsdfTable::sample(double x, double xi1, double xi2) const {
+  const int row = rowOf(x);
+  if (row == -2) return {0.0, 1.0};  // fully open: straight through with unit weight
+  if (row < 0 || row_abs_[row] <= 0.0) return {0.0, 0.0};
+  const std::size_t off = static_cast<std::size_t>(row) * layout_.nu;
+  const double scaled = xi1 * layout_.nu;
+  int k = std::min(static_cast<int>(scaled), layout_.nu - 1);
+  const double frac = scaled - k;
+  if (frac >= alias_prob_[off + k]) k = static_cast<int>(alias_[off + k]);
+  const double m = masses_[off + k];
+  Sample s;
+  s.weight = m >= 0 ? row_abs_[row] : -row_abs_[row];
+  const double within = layout_.line_spectrum ? 0.5 : xi2;
+  s.u_shift = layout_.u0_per_m + (k + within) * layout_.du_per_m;
+  return s;
+}
+
+double WbsdfTable::pdf(double x, double u) const {
+  const int row = rowOf(x);
+  if (row < 0 || row_abs_[row] <= 0.0) return 0.0;
+  const int k = static_cast<int>(std::floor((u - layout_.u0_per_m) / layout_.du_per_m));
+  if (k < 0 || k >= layout_.nu) return 0.0;
+  const double p = std::abs(mass(row, k)) / row_abs_[row];
+  return layout_.line_spectrum ? p : p / layout_.du_per_m;
+}
+
+double WbsdfTable::eval(double x, double u) const {
+  const int row = rowOf(x);
+  if (row < 0) return 0.0;
+  const int k = static_cast<int>(std::floor((u - layout_.u0_per_m) / layout_.du_per_m));
+  if (k < 0 || k >= layout_.nu) return 0.0;
+  return layout_.line_spectrum ? mass(row, k) : mass(row, k) / layout_.du_per_m;
+}
+
+double WbsdfTable::negativeFraction() const {
+  double neg = 0.0, all = 0.0;
+  for (double m : masses_) {
+    all += std::abs(m);
+    if (m < 0) neg -= m;
+  }
+  return all > 0 ? neg / all : 0.0;
+}
+
+std::size_t WbsdfTable::bytes() const {
+  return masses_.size() * (sizeof(double) + sizeof(float) + sizeof(std::uint32_t)) + row_abs_.size() * 8;
+}
+
+}  // namespace diffray::wbsdf

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs diffray's build dependencies from Debian 12 packages when any is missing.
+# Sourced by tools/quickstart and tools/check. As root it runs apt-get; otherwise it prints the exact
+# command to run and stops.
+DIFFRAY_PACKAGES=(build-essential cmake pkg-config libembree-dev libtbb-dev libfftw3-dev libeigen3-dev
+  libsndfile1-dev portaudio19-dev nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev)
+
+diffray_install_deps() {
+  local missing=()
+  for p in "${DIFFRAY_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local cmd="apt-get install -y --no-install-recommends ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "diffray needs these Debian packages: ${missing[*]}" >&2
+    echo "run as root:  apt-get update && $cmd" >&2
+    exit 1
+  fi
+  echo "installing: ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+diffray_build() {
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build build -j"$(nproc)"
+}
