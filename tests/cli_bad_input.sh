@@ -1,2 +1,52 @@
 #!/usr/bin/env bash
-exit 0
+# Bad input to the diffray CLI must give exactly one line on stderr, a non-zero exit code and no output
+# file (design: never a crash, never a half-written output). Usage: cli_bad_input.sh PATH/TO/diffray
+set -u
+bin="$1"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+passes=0
+
+expect_error() {  # expect_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  local out="$tmp/out.csv"
+  rm -f "$out"
+  "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/out.csv* >/dev/null 2>&1; then
+    echo "FAIL: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+
+csv="--csv=$tmp/out.csv"
+expect_error "zero-width slit"        validate slit-fraunhofer --width 0 --rays 1000 "$csv"
+expect_error "negative width"         validate double-slit --width -1e-4 --rays 1000 "$csv"
+expect_error "zero wavelength"        validate slit-fresnel --wavelength 0 --rays 1000 "$csv"
+expect_error "NaN width"              validate slit-fraunhofer --width nan --rays 1000 "$csv"
+expect_error "infinite distance"      validate slit-fraunhofer --distance inf --rays 1000 "$csv"
+expect_error "negative frequency"     validate door-rs --freq 125,-250 --rays 1000 "$csv"
+expect_error "spacing below width"    validate double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"
+expect_error "unknown case"           validate no-such-case "$csv"
+expect_error "unknown option"         validate slit-fraunhofer --no-such-option 3 "$csv"
+expect_error "option of another case" validate slit-fraunhofer --spacing 1e-4 --rays 1000 "$csv"
+expect_error "non-numeric value"      validate slit-fraunhofer --width wide --rays 1000 "$csv"
+expect_error "too few bins"           validate slit-fraunhofer --bins 2 --rays 1000 "$csv"
+expect_error "zero rays"              validate slit-fraunhofer --rays 0 "$csv"
+expect_error "unknown sampler"        validate slit-fraunhofer --sampler magic "$csv"
+expect_error "unwritable CSV"         validate grating-orders --rays 20000 --csv "$tmp/no/such/dir/out.csv"
+expect_error "no subcommand"
+expect_error "unknown subcommand"     frobnicate
+
+# The good path writes the CSV completely (header + one row per bin).
+"$bin" validate slit-fraunhofer --rays 20000 --bins 11 --csv "$tmp/good.csv" >/dev/null 2>&1
+if [ "$(wc -l <"$tmp/good.csv" 2>/dev/null)" = "12" ]; then passes=$((passes + 1)); else
+  echo "FAIL: good run did not write 12 CSV lines"; fails=$((fails + 1)); fi
+
+echo "cli_bad_input: $passes passed, $fails failed"
+[ "$fails" -eq 0 ]

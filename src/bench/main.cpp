@@ -1,1 +1,178 @@
-int main() { return 0; }
+// diffray_bench: prints one JSON line per benchmark, each with the anchor it is compared against,
+// measured in the same run (tools/bench runs it).
+//   transport:   diffray's signed-energy tracer vs a plain rtcIntersect1 loop over the same scene, with the
+//                same number of intersection queries per path and the same thread count.
+//   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
+//                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
+#include <embree3/rtcore.h>
+#include <tbb/parallel_reduce.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "diffray/core/parallel.h"
+#include "diffray/transport/tracer.h"
+#include "diffray/validate/case.h"
+#include "diffray/wbsdf/microstructure.h"
+
+namespace {
+
+using namespace diffray;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The slit-fraunhofer scene: a slit table at z = 0, a screen 5 m behind.
+struct BenchScene {
+  transport::Scene scene;
+  transport::CollimatedSource source;
+  BenchScene() {
+    const double a = 100e-6, lambda = 500e-9, z = 5.0;
+    wbsdf::TableOptions o;
+    o.wavelength_m = lambda;
+    o.u_half_range_per_m = 0.02 / lambda;
+    o.rows_per_feature = 8;
+    o.cells_per_coherence = 200;
+    transport::Occluder occ;
+    occ.table_x = wbsdf::WbsdfTable::build(*wbsdf::Openings::slit(a), o);
+    occ.half_x_m = a;
+    occ.half_y_m = 0.6;
+    scene.addOccluder(occ);
+    receiver::Screen screen;
+    screen.frame.origin = core::Vec3(0, 0, z);
+    screen.half_x_m = 0.075;
+    screen.half_y_m = 0.6;
+    screen.nx = 151;
+    scene.addScreen(screen);
+    scene.build();
+    source.frame.origin = core::Vec3(0, 0, -0.5);
+    source.half_x_m = 0.5 * a;
+    source.half_y_m = 0.5;
+    source.wavelength_m = lambda;
+  }
+};
+
+// The anchor: per path, one rtcIntersect1 from the source window to the occluder and one from there in a
+// random direction inside the screen's cone, the same queries diffray makes, with nothing else.
+double plainEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
+  RTCScene scene = b.scene.embree()->handle();
+  const auto t0 = Clock::now();
+  const std::uint64_t chunk = 16384;
+  const std::uint64_t chunks = paths / chunk;
+  const double hits = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint64_t>(0, chunks, 1), 0.0,
+      [&](const tbb::blocked_range<std::uint64_t>& r, double acc) {
+        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+          core::Rng rng(7, c);
+          RTCIntersectContext ctx;
+          rtcInitIntersectContext(&ctx);
+          for (std::uint64_t i = 0; i < chunk; ++i) {
+            RTCRayHit rh;
+            rh.ray.org_x = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
+            rh.ray.org_y = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
+            rh.ray.org_z = -0.5f;
+            rh.ray.dir_x = 0.0f;
+            rh.ray.dir_y = 0.0f;
+            rh.ray.dir_z = 1.0f;
+            rh.ray.tnear = 0.0f;
+            rh.ray.tfar = INFINITY;
+            rh.ray.mask = 0xFFFFFFFFu;
+            rh.ray.flags = 0;
+            rh.ray.time = 0.0f;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene, &ctx, &rh);
+            const float ox = rh.ray.org_x, oy = rh.ray.org_y;
+            rh.ray.org_x = ox;
+            rh.ray.org_y = oy;
+            rh.ray.org_z = 0.0f;
+            rh.ray.dir_x = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
+            rh.ray.dir_z = std::sqrt(1.0f - rh.ray.dir_x * rh.ray.dir_x);
+            rh.ray.tnear = 1e-6f;
+            rh.ray.tfar = INFINITY;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene, &ctx, &rh);
+            acc += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
+          }
+        }
+        return acc;
+      },
+      std::plus<double>(), tbb::simple_partitioner());
+  const double s = secondsSince(t0);
+  if (hits < 0.5 * static_cast<double>(chunks * chunk)) std::cerr << "bench: anchor rays missed the screen\n";
+  return static_cast<double>(chunks * chunk) / s;
+}
+
+void benchTransport(std::uint64_t paths) {
+  BenchScene b;
+  const int threads = core::ThreadLimit::current();
+  plainEmbreeRaysPerSecond(b, paths / 8);  // warm-up
+  const double embree = plainEmbreeRaysPerSecond(b, paths);
+  transport::TraceOptions to;
+  to.rays = paths;
+  auto t0 = Clock::now();
+  const auto tr = transport::trace(b.scene, b.source, to);
+  const double diffray = static_cast<double>(tr.rays) / secondsSince(t0);
+  nlohmann::json j{{"bench", "transport"},
+                   {"scene", "slit-fraunhofer"},
+                   {"paths", paths},
+                   {"segments_per_path", static_cast<double>(tr.segments) / static_cast<double>(tr.rays)},
+                   {"embree_rays_per_s", embree},
+                   {"diffray_rays_per_s", diffray},
+                   {"ratio", diffray / embree},
+                   {"threads", threads}};
+  std::cout << j.dump() << std::endl;
+}
+
+void benchConvergence(const std::string& case_name, bool qmc) {
+  const validate::CaseInfo* info = validate::findCase(case_name);
+  const validate::Params params = validate::resolveParams(*info, {});
+  std::vector<double> rays, rms;
+  for (std::uint64_t n = 250'000; n <= 16'000'000; n *= 4) {
+    // Average the squared error over a few seeds so the slope is not one seed's luck.
+    double sq = 0.0;
+    const int seeds = 3;
+    for (int s = 1; s <= seeds; ++s) {
+      validate::RunOptions ro;
+      ro.rays = n;
+      ro.seed = static_cast<std::uint64_t>(s);
+      ro.qmc = qmc;
+      const auto r = info->run(params, ro);
+      sq += r.rms_error_rel_peak * r.rms_error_rel_peak;
+    }
+    rays.push_back(static_cast<double>(n));
+    rms.push_back(std::sqrt(sq / seeds));
+  }
+  // Least-squares slope of log(rms) against log(rays).
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) mx += std::log(rays[i]), my += std::log(rms[i]);
+  mx /= static_cast<double>(rays.size());
+  my /= static_cast<double>(rays.size());
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    sxy += (std::log(rays[i]) - mx) * (std::log(rms[i]) - my);
+    sxx += (std::log(rays[i]) - mx) * (std::log(rays[i]) - mx);
+  }
+  nlohmann::json j{{"bench", "convergence"}, {"case", case_name}, {"sampler", qmc ? "qmc" : "mc"},
+                   {"rays", rays},           {"rms_error_rel_peak", rms}, {"slope", sxy / sxx},
+                   {"anchor_slope_1_over_sqrt_n", -0.5}};
+  std::cout << j.dump() << std::endl;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string which = argc > 1 ? argv[1] : "all";
+  try {
+    if (which == "all" || which == "transport") benchTransport(16'000'000);
+    if (which == "all" || which == "convergence") {
+      benchConvergence("slit-fraunhofer", false);
+      benchConvergence("slit-fraunhofer", true);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "diffray_bench: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

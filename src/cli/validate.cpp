@@ -1,5 +1,6 @@
 // `diffray validate CASE|all`: runs validation cases and prints a table (or JSON lines), optionally a CSV
 // with one row per receiver bin. Exit code 0 when every case meets its target, 1 when one misses it.
+#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -24,6 +25,7 @@ struct ValidateOptions {
   std::string case_name;
   std::uint64_t rays = 0;
   std::string csv;
+  std::string sampler = "qmc";
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
 };
 
@@ -78,22 +80,38 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       "validate", "Compare traced diffraction with closed-form and quadrature references." + case_list +
                       "\n  all: every case, as a table");
   sub->add_option("case", opts->case_name, "case name, or all")->required();
-  sub->add_option("--rays", opts->rays, "rays per case (default: the case's own)");
+  sub->add_option_function<double>(
+         "--rays",
+         [opts](double v) {
+           if (!(v >= 1 && v <= 1e13 && std::floor(v) == v))
+             throw CLI::ValidationError("--rays", "must be a whole number >= 1 (e.g. 2000000 or 2e6)");
+           opts->rays = static_cast<std::uint64_t>(v);
+         },
+         "rays per case (default: the case's own; 2e6 is accepted)")
+      ->type_name("N");
   sub->add_option("--seed", common.seed, "random seed; the same seed gives the same result")
       ->capture_default_str();
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
   sub->add_option("--csv", opts->csv, "write one row per receiver bin to this CSV file");
+  sub->add_option("--sampler", opts->sampler, "qmc: randomised quasi-Monte Carlo; mc: plain Monte Carlo")
+      ->check(CLI::IsMember({"qmc", "mc"}))
+      ->capture_default_str();
   // The union of every case's physical parameters; each case rejects the ones it does not take.
-  std::set<std::string> seen;
+  std::map<std::string, std::string> help;
   for (const auto& c : validate::cases())
     for (const auto& p : c.params) {
-      if (!seen.insert(p.name).second) continue;
-      auto* o = sub->add_option_function<std::vector<double>>(
-          "--" + p.name, [opts, name = p.name](const std::vector<double>& v) { opts->values[name] = v; },
-          p.help);
-      o->delimiter(',');
+      std::ostringstream d;
+      for (std::size_t i = 0; i < p.defaults.size(); ++i) d << (i ? "," : "") << p.defaults[i];
+      std::string& h = help[p.name];
+      h += (h.empty() ? "" : "; ") + c.name + ": " + p.help + " [" + d.str() + "]";
     }
+  for (const auto& [name, text] : help) {
+    auto* o = sub->add_option_function<std::vector<double>>(
+        "--" + name, [opts, n = name](const std::vector<double>& v) { opts->values[n] = v; }, text);
+    o->delimiter(',');
+    o->type_name("X");
+  }
 
   return [opts, &common]() {
     core::ThreadLimit limit(common.threads);
@@ -126,6 +144,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       validate::RunOptions ro;
       ro.rays = opts->rays;
       ro.seed = common.seed;
+      ro.qmc = opts->sampler == "qmc";
       ro.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
       results.push_back(c->run(params[i], ro));
       progress.finish();

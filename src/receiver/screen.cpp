@@ -4,14 +4,13 @@
 
 namespace diffray::receiver {
 
-double ScreenTally::standardError(int i, std::uint64_t rays) const {
-  // Each ray contributes X_r (0 when it misses the bin); total = Σ X_r, Var(total) = N·Var(X) with
-  // Var(X) = E[X²] − E[X]² estimated from the sums.
-  if (rays < 2) return 0.0;
-  const double n = static_cast<double>(rays);
-  const double mean = sum[i] / n;
-  const double var = std::max(0.0, sum_sq[i] / n - mean * mean) * n / (n - 1.0);
-  return std::sqrt(n * var);
+double ScreenTally::standardError(int i) const {
+  // Total = Σ_c S_c over K independent chunks: Var(total) = K·Var(S), Var(S) by the unbiased sample
+  // variance of the chunk totals.
+  if (chunks < 2) return 0.0;
+  const double k = static_cast<double>(chunks);
+  const double var = std::max(0.0, (sum_sq[i] - sum[i] * sum[i] / k) / (k - 1.0));
+  return std::sqrt(k * var);
 }
 
 double ScreenTally::negativeFraction() const {

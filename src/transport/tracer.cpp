@@ -30,18 +30,17 @@ struct PathState {
 };
 
 // Scatters a ray at an occluder (paper eq. 8–10). Returns false when the ray ends there.
-bool scatterAtOccluder(const Occluder& occ, const Vec3& hit, double wavelength, core::Rng& rng, PathState& s,
-                       TraceResult& acc) {
+bool scatterAtOccluder(const Occluder& occ, const Vec3& hit, double wavelength, core::ChunkSampler& sampler,
+                       PathState& s, TraceResult& acc) {
   const geometry::Frame& f = occ.frame;
   const double x = f.localX(hit), y = f.localY(hit);
   const double alpha = s.dir.dot(f.ex), beta = s.dir.dot(f.ey), gamma = s.dir.dot(f.n);
-  const double xi1 = rng.uniform(), xi2 = rng.uniform();
-  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, xi1, xi2);
+  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, sampler.next());
+  const double xi_y = sampler.next();  // drawn even when unused, so dimensions stay aligned across rays
   double weight = sx.weight;
   double v_shift = 0.0;
   if (occ.table_y && weight != 0.0) {
-    const double xi3 = rng.uniform(), xi4 = rng.uniform();
-    const wbsdf::WbsdfTable::Sample sy = occ.table_y->sample(y, xi3, xi4);
+    const wbsdf::WbsdfTable::Sample sy = occ.table_y->sample(y, xi_y);
     weight *= sy.weight;
     v_shift = sy.u_shift;
   }
@@ -82,10 +81,13 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
     return r;
   };
   auto body = [&](TraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
+    // Quasi-random dimensions: source x, source y, then the first occluder's u' and v'.
+    core::ChunkSampler sampler(rng, 4, options.qmc);
     for (std::uint64_t i = begin; i < end; ++i) {
+      sampler.startRay(i - begin);
       PathState s;
-      const double sx = (2.0 * rng.uniform() - 1.0) * source.half_x_m;
-      const double sy = (2.0 * rng.uniform() - 1.0) * source.half_y_m;
+      const double sx = (2.0 * sampler.next() - 1.0) * source.half_x_m;
+      const double sy = (2.0 * sampler.next() - 1.0) * source.half_y_m;
       s.origin = source.frame.origin + sx * source.frame.ex + sy * source.frame.ey;
       s.dir = dir0;
       s.energy = ray_energy;
@@ -123,11 +125,12 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
             alive = false;
             break;
           case ObjectKind::Occluder:
-            alive = scatterAtOccluder(scene.occluders()[obj.index], p, lambda, rng, s, acc);
+            alive = scatterAtOccluder(scene.occluders()[obj.index], p, lambda, sampler, s, acc);
             break;
         }
       }
     }
+    for (auto& t : acc.screens) t.closeChunk();
   };
   auto progress = [&](std::uint64_t n) {
     if (options.on_progress) options.on_progress(n);

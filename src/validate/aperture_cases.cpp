@@ -40,7 +40,7 @@ CaseResult timed(const std::string& name, F&& run) {
 }  // namespace
 
 CaseInfo slitFraunhoferCase() {
-  CaseInfo c{"slit-fraunhofer", "single slit, far field, vs a²·sinc²(a·u) (Fraunhofer)", {}, 8'000'000, {}};
+  CaseInfo c{"slit-fraunhofer", "single slit, far field, vs a²·sinc²(a·u) (Fraunhofer)", {}, 32'000'000, {}};
   c.params = {{"width", {100e-6}, "slit width a (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {5.0}, "slit to screen (m); far field needs distance >> a²/λ"},
@@ -63,7 +63,7 @@ CaseInfo slitFraunhoferCase() {
         return reference::farFieldScreenIntensity2D(x, z, lambda,
                                                     reference::slitFraunhofer(reference::screenU(x, z, lambda), a));
       };
-      runAperture(s, o, raysOf(o, 8'000'000), r);
+      runAperture(s, o, raysOf(o, 32'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
   };
@@ -71,7 +71,7 @@ CaseInfo slitFraunhoferCase() {
 }
 
 CaseInfo doubleSlitCase() {
-  CaseInfo c{"double-slit", "two slits, far field, vs 4a²·cos²(πdu)·sinc²(au) (Young)", {}, 8'000'000, {}};
+  CaseInfo c{"double-slit", "two slits, far field, vs 4a²·cos²(πdu)·sinc²(au) (Young)", {}, 32'000'000, {}};
   c.params = {{"width", {50e-6}, "slit width a (m)"},
               {"spacing", {250e-6}, "centre-to-centre spacing d (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
@@ -97,14 +97,14 @@ CaseInfo doubleSlitCase() {
         const double u = reference::screenU(x, z, lambda);
         return reference::farFieldScreenIntensity2D(x, z, lambda, reference::doubleSlitFraunhofer(u, a, d));
       };
-      runAperture(s, o, raysOf(o, 8'000'000), r);
+      runAperture(s, o, raysOf(o, 32'000'000), r);
     });
   };
   return c;
 }
 
 CaseInfo rectApertureCase() {
-  CaseInfo c{"rect-aperture", "rectangular aperture on a 2D screen vs (ab/λz)²·sinc²·sinc²", {}, 16'000'000, {}};
+  CaseInfo c{"rect-aperture", "rectangular aperture on a 2D screen vs (ab/λz)²·sinc²·sinc²", {}, 48'000'000, {}};
   c.params = {{"width", {100e-6}, "aperture width a along x (m)"},
               {"height", {150e-6}, "aperture height b along y (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
@@ -134,7 +134,7 @@ CaseInfo rectApertureCase() {
         const double t2 = reference::rectFraunhofer(x / (rr * lambda), y / (rr * lambda), a, b);
         return t2 * (z / rr) * (z / rr) / (lambda * rr * lambda * rr);
       };
-      runAperture(s, o, raysOf(o, 16'000'000), r);
+      runAperture(s, o, raysOf(o, 48'000'000), r);
     });
   };
   return c;
@@ -142,7 +142,7 @@ CaseInfo rectApertureCase() {
 
 CaseInfo slitFresnelCase() {
   CaseInfo c{"slit-fresnel", "slit in the near field (Fresnel number ~4) vs the Fresnel-integral pattern", {},
-             8'000'000, {}};
+             16'000'000, {}};
   c.params = {{"width", {1e-3}, "slit width a (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {0.5}, "slit to screen (m); Fresnel number a²/(λz)"},
@@ -161,9 +161,8 @@ CaseInfo slitFresnelCase() {
       s.distance_m = z;
       s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 1.5 * a;
       s.bins_x = binsOf(p, "bins");
-      s.rows_per_feature = 512;
       s.reference = [=](double x, double) { return reference::fresnelSlitIntensity(x, a, lambda, z); };
-      runAperture(s, o, raysOf(o, 8'000'000), r);
+      runAperture(s, o, raysOf(o, 16'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
   };
@@ -171,7 +170,7 @@ CaseInfo slitFresnelCase() {
 }
 
 CaseInfo doorRsCase() {
-  CaseInfo c{"door-rs", "0.9 m doorway (2D), line 2 m behind, vs Rayleigh–Sommerfeld quadrature", {}, 8'000'000,
+  CaseInfo c{"door-rs", "0.9 m doorway (2D), line 2 m behind, vs Rayleigh–Sommerfeld quadrature", {}, 32'000'000,
              {}};
   c.params = {{"width", {0.9}, "opening width (m)"},
               {"freq", {125, 250, 500, 1000}, "frequencies (Hz), comma-separated"},
@@ -187,7 +186,7 @@ CaseInfo doorRsCase() {
       core::requirePositive("--screen", one(p, "screen"));
       const double c_air = core::speedOfSound(one(p, "temperature"));
       const auto door = wbsdf::Openings::slit(a);
-      const std::uint64_t rays = raysOf(o, 8'000'000);
+      const std::uint64_t rays = raysOf(o, 32'000'000);
       const auto& freqs = p.at("freq");
       for (double f : freqs) {
         core::requirePositive("--freq", f);

@@ -55,6 +55,7 @@ CaseInfo gratingOrdersCase() {
     transport::TraceOptions to;
     to.rays = o.rays ? o.rays : 4'000'000;
     to.seed = o.seed;
+    to.qmc = o.qmc;
     to.on_progress = o.on_progress;
     const transport::TraceResult tr = transport::trace(scene, src, to);
 
@@ -69,7 +70,7 @@ CaseInfo gratingOrdersCase() {
       const double sin_t = x / std::hypot(x, z);
       const double q_real = sin_t * period / lambda;
       const int q = static_cast<int>(std::lround(q_real));
-      const double se = tally.standardError(ix, tr.rays);
+      const double se = tally.standardError(ix);
       if (std::abs(q_real - q) < 0.25 && std::abs(q) <= q_max) {
         order_e[q + q_max] += tally.sum[ix];
         order_var[q + q_max] += se * se;

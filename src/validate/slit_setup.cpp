@@ -24,7 +24,11 @@ std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const wbsdf::Microstructure& m
   const auto [lo, hi] = m.support();
   wbsdf::TableOptions o;
   o.wavelength_m = s.wavelength_m;
-  o.rows_per_feature = s.rows_per_feature;
+  // Rows: an x-cell of width dx moves where a ray's direction was drawn by up to dx; keep that under 1/8 of
+  // a bin and of the smallest feature.
+  const double bin_m = 2.0 * screen_half / bins;
+  const double dx = std::min(bin_m, m.featureSize()) / 8.0;
+  o.rows_per_feature = std::max(8, std::min(s.max_rows_per_feature, static_cast<int>(std::ceil(m.featureSize() / dx))));
   // A u-cell of width du blurs landing positions by up to λ·z·du: keep that under 1/8 of a bin.
   const double bin = 2.0 * screen_half / bins;
   const double du = bin / (8.0 * s.wavelength_m * s.distance_m);
@@ -70,6 +74,7 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
   transport::TraceOptions topt;
   topt.rays = rays;
   topt.seed = options.seed;
+  topt.qmc = options.qmc;
   topt.on_progress = options.on_progress;
   const transport::TraceResult tr = transport::trace(scene, src, topt);
 
@@ -85,7 +90,7 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
       row.x_m = screen.binCentreX(ix);
       row.y_m = two_d ? 0.0 : screen.binCentreY(iy);
       row.traced = tally.sum[bin] / bin_area;
-      row.std_error = tally.standardError(bin, tr.rays) / bin_area;
+      row.std_error = tally.standardError(bin) / bin_area;
       // The oracle averaged over the bin (Gauss–Legendre in x, and in y for 2D screens).
       double ref = 0.0;
       for (int i = 0; i < 8; ++i)

@@ -9,54 +9,27 @@
 
 namespace diffray::wbsdf {
 
-namespace {
-// Walker/Vose alias table over |masses| of one row; returns Σ|mass|.
-double buildAlias(const double* masses, int n, float* prob, std::uint32_t* alias) {
-  double total = 0.0;
-  for (int k = 0; k < n; ++k) total += std::abs(masses[k]);
-  if (total <= 0.0) {
-    for (int k = 0; k < n; ++k) {
-      prob[k] = 1.0f;
-      alias[k] = static_cast<std::uint32_t>(k);
-    }
-    return 0.0;
-  }
-  std::vector<double> scaled(n);
-  std::vector<int> small, large;
-  small.reserve(n);
-  large.reserve(n);
-  for (int k = 0; k < n; ++k) {
-    scaled[k] = std::abs(masses[k]) * n / total;
-    (scaled[k] < 1.0 ? small : large).push_back(k);
-  }
-  while (!small.empty() && !large.empty()) {
-    const int s = small.back();
-    small.pop_back();
-    const int l = large.back();
-    prob[s] = static_cast<float>(scaled[s]);
-    alias[s] = static_cast<std::uint32_t>(l);
-    scaled[l] -= 1.0 - scaled[s];
-    if (scaled[l] < 1.0) {
-      large.pop_back();
-      small.push_back(l);
-    }
-  }
-  for (int k : small) prob[k] = 1.0f, alias[k] = static_cast<std::uint32_t>(k);
-  for (int k : large) prob[k] = 1.0f, alias[k] = static_cast<std::uint32_t>(k);
-  return total;
-}
-}  // namespace
 
 WbsdfTable::WbsdfTable(TableLayout layout, std::vector<double> masses, double truncated_mass)
     : layout_(layout), masses_(std::move(masses)), truncated_mass_(truncated_mass) {
   DIFFRAY_CHECK(layout_.nx >= 1 && layout_.nu >= 1 && layout_.dx_m > 0 && layout_.du_per_m > 0);
   DIFFRAY_CHECK(masses_.size() == static_cast<std::size_t>(layout_.nx) * layout_.nu);
   row_abs_.resize(layout_.nx);
-  alias_prob_.resize(masses_.size());
-  alias_.resize(masses_.size());
+  cdf_.resize(static_cast<std::size_t>(layout_.nx) * (layout_.nu + 1));
+  guide_.resize(masses_.size());
   tbb::parallel_for(0, layout_.nx, [&](int j) {
-    const std::size_t off = static_cast<std::size_t>(j) * layout_.nu;
-    row_abs_[j] = buildAlias(&masses_[off], layout_.nu, &alias_prob_[off], &alias_[off]);
+    const double* m = &masses_[static_cast<std::size_t>(j) * layout_.nu];
+    double* c = &cdf_[static_cast<std::size_t>(j) * (layout_.nu + 1)];
+    c[0] = 0.0;
+    for (int k = 0; k < layout_.nu; ++k) c[k + 1] = c[k] + std::abs(m[k]);
+    row_abs_[j] = c[layout_.nu];
+    std::uint32_t* g = &guide_[static_cast<std::size_t>(j) * layout_.nu];
+    int k = 0;
+    for (int i = 0; i < layout_.nu; ++i) {
+      const double q = row_abs_[j] * i / layout_.nu;
+      while (k < layout_.nu - 1 && c[k + 1] <= q) ++k;
+      g[i] = static_cast<std::uint32_t>(k);
+    }
   });
 }
 
@@ -127,19 +100,22 @@ int WbsdfTable::rowOf(double x) const {
   return std::min(static_cast<int>(r), layout_.nx - 1);
 }
 
-WbsdfTable::Sample WbsdfTable::sample(double x, double xi1, double xi2) const {
+WbsdfTable::Sample WbsdfTable::sample(double x, double xi) const {
   const int row = rowOf(x);
   if (row == -2) return {0.0, 1.0};  // fully open: straight through with unit weight
   if (row < 0 || row_abs_[row] <= 0.0) return {0.0, 0.0};
-  const std::size_t off = static_cast<std::size_t>(row) * layout_.nu;
-  const double scaled = xi1 * layout_.nu;
-  int k = std::min(static_cast<int>(scaled), layout_.nu - 1);
-  const double frac = scaled - k;
-  if (frac >= alias_prob_[off + k]) k = static_cast<int>(alias_[off + k]);
-  const double m = masses_[off + k];
+  const double* c = &cdf_[static_cast<std::size_t>(row) * (layout_.nu + 1)];
+  const double target = xi * row_abs_[row];
+  // First k with c[k+1] > target (cells of zero mass are never chosen), starting from the guide entry,
+  // which never lies past it.
+  const int nu = layout_.nu;
+  const int bucket = std::min(static_cast<int>(xi * nu), nu - 1);
+  int k = static_cast<int>(guide_[static_cast<std::size_t>(row) * nu + bucket]);
+  while (k < nu - 1 && c[k + 1] <= target) ++k;
+  const double m = masses_[static_cast<std::size_t>(row) * layout_.nu + k];
   Sample s;
   s.weight = m >= 0 ? row_abs_[row] : -row_abs_[row];
-  const double within = layout_.line_spectrum ? 0.5 : xi2;
+  const double within = layout_.line_spectrum ? 0.5 : std::clamp((target - c[k]) / std::abs(m), 0.0, 1.0);
   s.u_shift = layout_.u0_per_m + (k + within) * layout_.du_per_m;
   return s;
 }
@@ -171,7 +147,7 @@ double WbsdfTable::negativeFraction() const {
 }
 
 std::size_t WbsdfTable::bytes() const {
-  return masses_.size() * (sizeof(double) + sizeof(float) + sizeof(std::uint32_t)) + row_abs_.size() * 8;
+  return (masses_.size() + cdf_.size() + row_abs_.size()) * sizeof(double) + guide_.size() * sizeof(std::uint32_t);
 }
 
 }  // namespace diffray::wbsdf

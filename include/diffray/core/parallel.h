@@ -1,5 +1,7 @@
 #pragma once
-// Deterministic parallel Monte Carlo. Work is cut into fixed chunks of `chunk_size` items; chunk c always
+// Deterministic parallel Monte Carlo. Work is cut into chunks of nearly equal size (at most `chunk_size`
+// items, and at least 32 chunks when there are enough items, so chunk-to-chunk scatter gives a usable
+// variance estimate); chunk c always
 // gets the random stream Rng(seed, c) and chunk results are combined in a fixed tree that depends only on
 // the number of chunks (tbb::parallel_deterministic_reduce with a simple partitioner). So the same seed
 // gives bit-identical results for any thread count. Threads: TBB's default (all cores) unless a
@@ -32,12 +34,15 @@ class ThreadLimit {
 template <class Acc, class Make, class Body, class OnChunk>
 Acc deterministicReduce(std::uint64_t count, std::uint64_t chunk_size, std::uint64_t seed, Make make,
                         Body body, OnChunk on_chunk) {
-  const std::uint64_t chunks = (count + chunk_size - 1) / chunk_size;
+  std::uint64_t chunks = (count + chunk_size - 1) / chunk_size;
+  if (chunks < 32) chunks = count < 32 ? count : 32;
+  auto bound = [&](std::uint64_t c) {
+    return (count / chunks) * c + (count % chunks) * c / chunks;  // = floor(count·c/chunks), no overflow
+  };
   auto run = [&](const tbb::blocked_range<std::uint64_t>& range, Acc acc) {
     for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
       Rng rng(seed, c);
-      const std::uint64_t begin = c * chunk_size;
-      const std::uint64_t end = begin + chunk_size < count ? begin + chunk_size : count;
+      const std::uint64_t begin = bound(c), end = bound(c + 1);
       body(acc, rng, begin, end);
       on_chunk(end - begin);
     }

@@ -2,6 +2,7 @@
 // Random numbers: std::mt19937_64 seeded from (seed, stream) through std::seed_seq, so every chunk of a
 // parallel loop has its own reproducible stream. Not thread-safe: one Rng per thread or chunk.
 #include <cstdint>
+#include <cmath>
 #include <random>
 
 namespace diffray::core {
@@ -20,6 +21,42 @@ class Rng {
 
  private:
   std::mt19937_64 engine_;
+};
+
+}  // namespace diffray::core
+
+namespace diffray::core {
+
+/// Uniforms for the rays of one chunk. With qmc, a ray's first `dims` uniforms come from a randomly
+/// shifted Kronecker lattice (the R_d sequence: point j = frac(shift + j·α), α_i = φ_d^−(i+1), φ_d the
+/// root of x^{d+1} = x + 1) and later ones from the chunk's Rng: randomised quasi-Monte Carlo, so each
+/// chunk is an independent unbiased replicate whose points are evenly spread. Without qmc every uniform
+/// comes from the Rng (plain Monte Carlo). Not thread-safe: one per chunk.
+class ChunkSampler {
+ public:
+  static constexpr int kMaxDims = 8;
+  ChunkSampler(Rng& rng, int dims, bool qmc);
+  /// Starts ray `index` (0-based within the chunk).
+  void startRay(std::uint64_t index) {
+    index_ = index;
+    dim_ = 0;
+  }
+  double next() {
+    if (!qmc_ || dim_ >= dims_) return rng_.uniform();
+    const double v = shift_[dim_] + static_cast<double>(index_ + 1) * alpha_[dim_];
+    ++dim_;
+    return v - std::floor(v);
+  }
+  Rng& rng() { return rng_; }
+
+ private:
+  Rng& rng_;
+  int dims_;
+  bool qmc_;
+  double shift_[kMaxDims] = {};
+  double alpha_[kMaxDims] = {};
+  std::uint64_t index_ = 0;
+  int dim_ = 0;
 };
 
 }  // namespace diffray::core

@@ -29,25 +29,33 @@ struct Screen {
   int bins() const { return nx * ny; }
 };
 
-/// Signed energy per bin, with the sum of squared ray energies for the estimator's variance.
+/// Signed energy per bin. Rays are traced in independent chunks (core/parallel.h); the sum of squared
+/// chunk totals gives each bin's standard error from the chunk-to-chunk scatter, which stays valid when
+/// rays within a chunk are quasi-random rather than independent.
 struct ScreenTally {
-  std::vector<double> sum, sum_sq;
-  std::vector<std::uint64_t> hits;
-  explicit ScreenTally(int bins = 0) : sum(bins, 0.0), sum_sq(bins, 0.0), hits(bins, 0) {}
-  void add(int bin, double energy) {
-    sum[bin] += energy;
-    sum_sq[bin] += energy * energy;
-    ++hits[bin];
+  std::vector<double> sum, sum_sq;  ///< Σ over chunks of the chunk total, and of its square
+  std::vector<double> chunk;        ///< the open chunk's totals
+  std::uint64_t chunks = 0;
+  explicit ScreenTally(int bins = 0) : sum(bins, 0.0), sum_sq(bins, 0.0), chunk(bins, 0.0) {}
+  void add(int bin, double energy) { chunk[bin] += energy; }
+  /// Folds the open chunk into the totals.
+  void closeChunk() {
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      sum[i] += chunk[i];
+      sum_sq[i] += chunk[i] * chunk[i];
+      chunk[i] = 0.0;
+    }
+    ++chunks;
   }
   void merge(const ScreenTally& o) {
     for (std::size_t i = 0; i < sum.size(); ++i) {
       sum[i] += o.sum[i];
       sum_sq[i] += o.sum_sq[i];
-      hits[i] += o.hits[i];
     }
+    chunks += o.chunks;
   }
-  /// Standard error of bin i's total when it came from `rays` independent rays.
-  double standardError(int i, std::uint64_t rays) const;
+  /// Standard error of bin i's total, from the scatter of its chunk totals.
+  double standardError(int i) const;
   /// Σ of negative bin energies over Σ|bin energies|.
   double negativeFraction() const;
 };

@@ -19,6 +19,9 @@ struct TraceOptions {
   std::uint64_t seed = 1;
   int max_bounces = 32;
   std::uint64_t chunk_rays = 16384;
+  /// Randomised quasi-Monte Carlo for the source position and the first WBSDF draw (core/rng.h);
+  /// false = plain Monte Carlo. Both are unbiased.
+  bool qmc = true;
   std::function<void(std::uint64_t)> on_progress;  ///< called with rays done per chunk (thread-safe)
 };
 

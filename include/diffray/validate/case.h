@@ -43,6 +43,7 @@ struct CaseResult {
 struct RunOptions {
   std::uint64_t rays = 0;  ///< 0: the case's default
   std::uint64_t seed = 1;
+  bool qmc = true;  ///< randomised quasi-Monte Carlo (see core::ChunkSampler); false = plain Monte Carlo
   std::function<void(std::uint64_t)> on_progress;
 };
 

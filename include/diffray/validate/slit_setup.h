@@ -20,7 +20,7 @@ struct ApertureSetup {
   double distance_m = 0;       ///< occluder to screen
   double screen_half_x_m = 0, screen_half_y_m = 0;
   int bins_x = 1, bins_y = 1;
-  int rows_per_feature = 128;
+  int max_rows_per_feature = 1024;
   /// Reference intensity at screen point (x, y), relative to the incident intensity.
   std::function<double(double, double)> reference;
 };

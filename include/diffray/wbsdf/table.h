@@ -5,8 +5,9 @@
 // Rows are x-cells of width dx on the occluder's local x axis (metres); columns are u-cells of width du
 // (cycles per metre) of the *shift* u' = u_o − u_i (angle-shift invariance, paper eq. 8 eq:transmission).
 // Cell (j,k) stores the x-averaged, u-integrated signed mass of W. Sampling at position x picks the row
-// containing x, then a column with probability |mass|/Σ|mass| (Walker alias table), then u' uniform in the
-// cell (continuous tables) or at the cell centre (line spectra, e.g. gratings). The ray's energy is
+// containing x and inverts the row's cumulative |mass| with one uniform: a monotone map, so stratified or
+// quasi-random uniforms stay stratified in u'. Within a cell u' is uniform (continuous tables) or the cell
+// centre (line spectra, e.g. gratings). The ray's energy is
 // multiplied by weight = sign(mass)·Σ|mass|, so E[weight] = Σ mass = x-average of |t|²: energy is
 // conserved on average and the sign travels in the ray. Immutable after construction; thread-safe.
 #include <cstdint>
@@ -50,8 +51,8 @@ class WbsdfTable {
     double u_shift = 0.0;  ///< sampled u' (cycles per metre)
     double weight = 0.0;   ///< sign(mass)·Σ|mass| of the row; 0 when the ray is absorbed (t = 0 there)
   };
-  /// Samples u' at position x from two uniforms in [0,1).
-  Sample sample(double x_m, double xi1, double xi2) const;
+  /// Samples u' at position x from one uniform in [0,1) (inverse of the row's |W| distribution).
+  Sample sample(double x_m, double xi) const;
   /// Probability density of u' at x (per unit u; for line spectra, the probability of the cell).
   double pdf(double x_m, double u_shift) const;
   /// The tabulated W at (x, u'): mass/du (for line spectra, the mass of the cell).
@@ -72,8 +73,10 @@ class WbsdfTable {
   TableLayout layout_;
   std::vector<double> masses_;
   std::vector<double> row_abs_;
-  std::vector<float> alias_prob_;
-  std::vector<std::uint32_t> alias_;
+  std::vector<double> cdf_;  ///< per row: nu + 1 running sums of |mass|, starting at 0
+  /// per row: nu entries, guide_[i] = the cell holding the quantile i/nu (Chen–Asau guide table), so the
+  /// inversion is a lookup and a short forward scan instead of a binary search.
+  std::vector<std::uint32_t> guide_;
   double truncated_mass_;
 };
 
