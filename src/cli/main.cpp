@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   diffray::cli::CommonOptions common;
   diffray::cli::Runner validate = diffray::cli::addValidateCommand(app, common);
+  diffray::cli::Runner wdf = diffray::cli::addWdfCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("validate")) return validate();
+    if (app.got_subcommand("wdf")) return wdf();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

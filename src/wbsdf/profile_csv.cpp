@@ -143,3 +143,24 @@ SampledProfile resampleProfile(const ProfilePoints& points, double dx_m) {
 }
 
 }  // namespace diffray::wbsdf
+
+namespace diffray::wbsdf {
+
+std::shared_ptr<const WbsdfTable> profileTable(const ProfilePoints& points, double wavelength_m,
+                                               std::size_t max_cells) {
+  core::requirePositive("--wavelength", wavelength_m);
+  // dx = λ/8: the numeric Wigner distribution then spans |u| < 2/λ, every shift that can leave a
+  // propagating ray; finer detail of t lies beyond that and is smoothed by the interpolation anyway.
+  const double dx = wavelength_m / 8.0;
+  const double samples = (points.x_m.back() - points.x_m.front()) / dx + 1.0;
+  // Untruncated lags need nu >= 2·samples; beyond the cell budget, shorter lags smooth W in u.
+  double nu = 2.0;
+  while (nu < 2.0 * samples && samples * nu * 2.0 <= static_cast<double>(max_cells)) nu *= 2.0;
+  if (nu < 64.0)
+    throw core::InputError("profile", "is too long for a Wigner table at this wavelength (" +
+                                          std::to_string(static_cast<long>(samples)) +
+                                          " samples at λ/8); use a shorter profile");
+  return WbsdfTable::fromWigner(wignerFFT(resampleProfile(points, dx), static_cast<int>(nu)));
+}
+
+}  // namespace diffray::wbsdf

@@ -58,6 +58,8 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   } else {
     L.nu = std::max(2, static_cast<int>(std::ceil(2.0 * half_range * o.cells_per_coherence *
                                                   m.coherenceLength())));
+    if (o.coarsen_to_fit && static_cast<std::size_t>(L.nx) * L.nu > o.max_cells)
+      L.nu = std::max(2, static_cast<int>(o.max_cells / static_cast<std::size_t>(L.nx)));
     L.nu += L.nu % 2;  // symmetric about u' = 0
     L.du_per_m = 2.0 * half_range / L.nu;
     L.u0_per_m = -half_range;
@@ -87,6 +89,19 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   double truncated = 0.0;
   for (double r : row_total) truncated += r;
   return std::make_shared<WbsdfTable>(L, std::move(masses), truncated / L.nx);
+}
+
+std::shared_ptr<const WbsdfTable> WbsdfTable::fromWigner(const WignerGrid& g) {
+  TableLayout L;
+  L.x0_m = g.x0_m - 0.5 * g.dx_m;
+  L.dx_m = g.dx_m;
+  L.nx = g.nx;
+  L.u0_per_m = g.u0_per_m - 0.5 * g.du_per_m;
+  L.du_per_m = g.du_per_m;
+  L.nu = g.nu;
+  std::vector<double> masses(g.values.size());
+  for (std::size_t i = 0; i < masses.size(); ++i) masses[i] = g.values[i] * g.du_per_m;
+  return std::make_shared<WbsdfTable>(L, std::move(masses));
 }
 
 int WbsdfTable::rowOf(double x) const {

@@ -17,5 +17,6 @@ struct CommonOptions {
 };
 
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
+Runner addWdfCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

@@ -38,3 +38,18 @@ ProfilePoints readProfileCsv(const std::string& path);
 SampledProfile resampleProfile(const ProfilePoints& points, double dx_m);
 
 }  // namespace diffray::wbsdf
+
+#include <memory>
+
+#include "diffray/wbsdf/table.h"
+
+namespace diffray::wbsdf {
+
+/// The WBSDF table of a profile for wavelength λ: resampled at dx = min(λ/8, half the smallest input
+/// spacing) so the numeric Wigner distribution covers |u| < 2/λ without aliasing (wigner_fft.h), with
+/// enough columns (≥ 2 × samples) that no lag is truncated. Throws core::InputError when the table would
+/// exceed `max_cells`.
+std::shared_ptr<const WbsdfTable> profileTable(const ProfilePoints& points, double wavelength_m,
+                                               std::size_t max_cells = 40'000'000);
+
+}  // namespace diffray::wbsdf

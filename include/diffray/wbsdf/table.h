@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "diffray/wbsdf/microstructure.h"
+#include "diffray/wbsdf/wigner_fft.h"
 
 namespace diffray::wbsdf {
 
@@ -38,6 +39,8 @@ struct TableOptions {
   int cells_per_coherence = 32;  ///< du = 1/(this · coherence length)
   int rows_per_feature = 64;     ///< dx = feature size / this
   std::size_t max_cells = 40'000'000;
+  /// When the table would exceed max_cells: widen du to fit (true) or throw InputError (false).
+  bool coarsen_to_fit = false;
 };
 
 class WbsdfTable {
@@ -46,6 +49,9 @@ class WbsdfTable {
 
   /// Builds the table of a microstructure from its closed-form cell integrals (in parallel).
   static std::shared_ptr<const WbsdfTable> build(const Microstructure& m, const TableOptions& options);
+  /// A table from a numeric Wigner distribution (wigner_fft.h): rows are the grid's rows (cells
+  /// [x_j − dx/2, x_j + dx/2)), columns its columns (cells [u_k − du/2, u_k + du/2)), masses W·du.
+  static std::shared_ptr<const WbsdfTable> fromWigner(const WignerGrid& grid);
 
   struct Sample {
     double u_shift = 0.0;  ///< sampled u' (cycles per metre)

@@ -1,0 +1,121 @@
+// `diffray wdf KIND`: tabulates the Wigner distribution (the WBSDF table) of a microstructure for one
+// wavelength, prints its size and how signed it is, and optionally writes every cell to CSV
+// (x, u', W) for plotting. KIND: slit, slits, half-plane, grating, or profile (a CSV file x,amplitude,phase).
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "diffray/cli/commands.h"
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/wbsdf/microstructure.h"
+#include "diffray/wbsdf/profile_csv.h"
+#include "diffray/wbsdf/table.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct WdfOptions {
+  std::string kind;
+  std::string profile;
+  std::string csv;
+  double width_m = 100e-6, spacing_m = 250e-6, period_m = 1.6e-6, modulation = 2.0, extent_m = 0.0;
+  double wavelength_m = 500e-9, u_range_per_m = 0.0;
+  int count = 2;
+};
+
+std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
+  core::requirePositive("--wavelength", o.wavelength_m);
+  wbsdf::TableOptions t;
+  t.wavelength_m = o.wavelength_m;
+  t.u_half_range_per_m = o.u_range_per_m;
+  t.max_cells = 4'000'000;  // a table to look at, not to trace with: coarsen u rather than refuse
+  t.coarsen_to_fit = true;
+  if (o.kind == "profile") {
+    if (o.profile.empty()) throw core::InputError("--profile", "KIND profile needs --profile FILE.csv");
+    return wbsdf::profileTable(wbsdf::readProfileCsv(o.profile), o.wavelength_m);
+  }
+  std::shared_ptr<wbsdf::Microstructure> m;
+  if (o.kind == "slit") {
+    core::requirePositive("--width", o.width_m);
+    m = wbsdf::Openings::slit(o.width_m);
+  } else if (o.kind == "slits") {
+    core::requirePositive("--width", o.width_m);
+    core::requirePositive("--spacing", o.spacing_m);
+    if (o.count < 1) throw core::InputError("--count", "must be >= 1");
+    m = wbsdf::Openings::slits(o.count, o.width_m, o.spacing_m);
+  } else if (o.kind == "half-plane") {
+    const double extent = o.extent_m > 0 ? o.extent_m : 20.0 * o.wavelength_m;
+    core::requirePositive("--extent", extent);
+    m = wbsdf::Openings::halfPlane(extent);
+  } else if (o.kind == "grating") {
+    core::requirePositive("--period", o.period_m);
+    core::requireFinite("--modulation", o.modulation);
+    m = std::make_shared<wbsdf::PhaseGrating>(o.period_m, o.modulation);
+  } else {
+    throw core::InputError("wdf", "unknown microstructure '" + o.kind +
+                                      "' (kinds: slit, slits, half-plane, grating, profile)");
+  }
+  return wbsdf::WbsdfTable::build(*m, t);
+}
+
+}  // namespace
+
+Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
+  auto o = std::make_shared<WdfOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "wdf", "Tabulate the Wigner distribution (WBSDF) of a microstructure: slit, slits, half-plane, "
+             "grating, or profile (CSV: x [m], amplitude 0..1, phase [rad]).");
+  sub->add_option("kind", o->kind, "slit | slits | half-plane | grating | profile")->required();
+  sub->add_option("--wavelength", o->wavelength_m, "wavelength (m)")->capture_default_str();
+  sub->add_option("--width", o->width_m, "slit width (m)")->capture_default_str();
+  sub->add_option("--spacing", o->spacing_m, "slit spacing, centre to centre (m)")->capture_default_str();
+  sub->add_option("--count", o->count, "number of slits")->capture_default_str();
+  sub->add_option("--period", o->period_m, "grating period (m)")->capture_default_str();
+  sub->add_option("--modulation", o->modulation, "grating phase modulation m")->capture_default_str();
+  sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m; 0 = 20 λ)");
+  sub->add_option("--u-range", o->u_range_per_m, "half-range of tabulated u' (cycles/m; 0 = 2/λ)");
+  sub->add_option("--profile", o->profile, "profile CSV file (KIND profile)");
+  sub->add_option("--csv", o->csv, "write every cell as x_m,u_per_m,w to this CSV file");
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
+  sub->add_flag("--json", common.json, "print a JSON object instead of text");
+  return [o, &common]() {
+    core::ThreadLimit limit(common.threads);
+    const auto table = makeTable(*o);
+    const auto& L = table->layout();
+    double max_row = 0.0;
+    for (int j = 0; j < L.nx; ++j) max_row = std::max(max_row, table->rowAbsMass(j));
+    nlohmann::json j{{"kind", o->kind},
+                     {"wavelength_m", o->wavelength_m},
+                     {"rows", L.nx},
+                     {"columns", L.nu},
+                     {"dx_m", L.dx_m},
+                     {"du_per_m", L.du_per_m},
+                     {"x0_m", L.x0_m},
+                     {"u0_per_m", L.u0_per_m},
+                     {"bytes", table->bytes()},
+                     {"negative_fraction", table->negativeFraction()},
+                     {"truncated_mass", table->truncatedMass()},
+                     {"max_ray_weight", max_row}};
+    if (!o->csv.empty())
+      core::writeFileAtomically(o->csv, [&](std::ostream& out) {
+        out << "x_m,u_per_m,w\n" << std::setprecision(9);
+        for (int r = 0; r < L.nx; ++r)
+          for (int k = 0; k < L.nu; ++k)
+            out << L.x0_m + (r + 0.5) * L.dx_m << ',' << L.u0_per_m + (k + 0.5) * L.du_per_m << ','
+                << table->mass(r, k) / L.du_per_m << '\n';
+      });
+    if (common.json) {
+      std::cout << j.dump() << std::endl;
+    } else {
+      for (auto it = j.begin(); it != j.end(); ++it) std::cout << std::setw(18) << it.key() << "  " << it.value() << "\n";
+    }
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli
