@@ -104,7 +104,7 @@ CaseInfo doubleSlitCase() {
 }
 
 CaseInfo rectApertureCase() {
-  CaseInfo c{"rect-aperture", "rectangular aperture on a 2D screen vs (ab/λz)²·sinc²·sinc²", {}, 48'000'000, {}};
+  CaseInfo c{"rect-aperture", "rectangular aperture on a 2D screen vs (ab/λz)²·sinc²·sinc²", {}, 32'000'000, {}};
   c.params = {{"width", {100e-6}, "aperture width a along x (m)"},
               {"height", {150e-6}, "aperture height b along y (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
@@ -134,7 +134,7 @@ CaseInfo rectApertureCase() {
         const double t2 = reference::rectFraunhofer(x / (rr * lambda), y / (rr * lambda), a, b);
         return t2 * (z / rr) * (z / rr) / (lambda * rr * lambda * rr);
       };
-      runAperture(s, o, raysOf(o, 48'000'000), r);
+      runAperture(s, o, raysOf(o, 32'000'000), r);
     });
   };
   return c;

@@ -58,9 +58,11 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   } else {
     L.nu = std::max(2, static_cast<int>(std::ceil(2.0 * half_range * o.cells_per_coherence *
                                                   m.coherenceLength())));
-    if (o.coarsen_to_fit && static_cast<std::size_t>(L.nx) * L.nu > o.max_cells)
-      L.nu = std::max(2, static_cast<int>(o.max_cells / static_cast<std::size_t>(L.nx)));
     L.nu += L.nu % 2;  // symmetric about u' = 0
+    if (o.coarsen_to_fit && static_cast<std::size_t>(L.nx) * L.nu > o.max_cells) {
+      L.nu = std::max(2, static_cast<int>(o.max_cells / static_cast<std::size_t>(L.nx)));
+      L.nu -= L.nu % 2;  // stay even, rounding down so the limit holds
+    }
     L.du_per_m = 2.0 * half_range / L.nu;
     L.u0_per_m = -half_range;
   }

@@ -45,7 +45,7 @@ class ChunkSampler {
     if (!qmc_ || dim_ >= dims_) return rng_.uniform();
     const double v = shift_[dim_] + static_cast<double>(index_ + 1) * alpha_[dim_];
     ++dim_;
-    return v - std::floor(v);
+    return v - static_cast<double>(static_cast<std::int64_t>(v));  // v ≥ 0: truncation is floor
   }
   Rng& rng() { return rng_; }
 
