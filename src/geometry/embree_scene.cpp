@@ -81,6 +81,34 @@ Hit EmbreeScene::intersect(const Ray& ray) const {
   return hit;
 }
 
+void EmbreeScene::intersectPacket(const RayPacket& rays, HitPacket& hits) const {
+  static_assert(RayPacket::kSize == 8, "EmbreeScene::intersectPacket uses rtcIntersect8");
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(32) RTCRayHit8 rh;
+  for (int i = 0; i < 8; ++i) {
+    rh.ray.org_x[i] = rays.org_x[i];
+    rh.ray.org_y[i] = rays.org_y[i];
+    rh.ray.org_z[i] = rays.org_z[i];
+    rh.ray.dir_x[i] = rays.dir_x[i];
+    rh.ray.dir_y[i] = rays.dir_y[i];
+    rh.ray.dir_z[i] = rays.dir_z[i];
+    rh.ray.tnear[i] = rays.tnear[i];
+    rh.ray.tfar[i] = std::numeric_limits<float>::infinity();
+    rh.ray.time[i] = 0.0f;
+    rh.ray.mask[i] = 0xFFFFFFFFu;
+    rh.ray.id[i] = 0;
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(rays.active, scene_, &context, &rh);
+  for (int i = 0; i < 8; ++i) {
+    const bool hit = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    hits.t[i] = rh.ray.tfar[i];
+    hits.object[i] = hit ? object_of_triangle_[rh.hit.primID[i]] : -1;
+  }
+}
+
 Hit BruteForceScene::intersect(const Ray& ray) const {
   Hit best;
   double best_t = ray.tfar;

@@ -14,4 +14,15 @@ void Mesh::addRect(const Vec3& centre, const Vec3& half_x, const Vec3& half_y, i
   object_of_triangle.push_back(object);
 }
 
+void Intersector::intersectPacket(const RayPacket& rays, HitPacket& hits) const {
+  for (int i = 0; i < RayPacket::kSize; ++i) {
+    if (!rays.active[i]) continue;
+    Ray r{Vec3(rays.org_x[i], rays.org_y[i], rays.org_z[i]), Vec3(rays.dir_x[i], rays.dir_y[i], rays.dir_z[i]),
+          rays.tnear[i], 1e300};
+    const Hit h = intersect(r);
+    hits.t[i] = static_cast<float>(h.t);
+    hits.object[i] = h.object;
+  }
+}
+
 }  // namespace diffray::geometry

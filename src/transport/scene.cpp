@@ -14,7 +14,7 @@ int Scene::addObject(ObjectKind kind, int index, const geometry::Frame& f, doubl
   core::requirePositive("object half-width", hx);
   core::requirePositive("object half-height", hy);
   const int id = static_cast<int>(objects_.size());
-  objects_.push_back({kind, index, nullptr});
+  objects_.push_back({kind, index, f, f.origin.dot(f.n), f.origin.dot(f.ex), f.origin.dot(f.ey)});
   mesh_.addRect(f.origin, f.ex * hx, f.ey * hy, id);
   return id;
 }
@@ -38,14 +38,6 @@ int Scene::addAbsorber(Absorber a) {
 }
 
 void Scene::build(bool brute_force) {
-  // Frames are stored in the vectors, which no longer grow: point the object table at them now.
-  for (auto& ref : objects_) {
-    switch (ref.kind) {
-      case ObjectKind::Occluder: ref.frame = &occluders_[ref.index].frame; break;
-      case ObjectKind::Screen: ref.frame = &screens_[ref.index].frame; break;
-      case ObjectKind::Absorber: ref.frame = &absorbers_[ref.index].frame; break;
-    }
-  }
   if (brute_force)
     intersector_ = std::make_unique<geometry::BruteForceScene>(mesh_);
   else

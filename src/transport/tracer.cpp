@@ -23,20 +23,26 @@ void TraceResult::merge(const TraceResult& o) {
 
 namespace {
 
+// The hot loop works on plain doubles: a few dot products per event, with no temporaries.
+inline double dot(const double* a, const Vec3& b) { return a[0] * b.x() + a[1] * b.y() + a[2] * b.z(); }
+
 struct PathState {
-  Vec3 origin, dir;
-  double energy;
+  double o[3], d[3];    ///< origin and unit direction (world, metres), double precision
+  double energy;        ///< signed energy
   double tnear;
+  std::uint64_t index;  ///< ray index within its chunk (its quasi-random point)
+  int dim;              ///< next uniform dimension of this ray
 };
 
-// Scatters a ray at an occluder (paper eq. 8–10). Returns false when the ray ends there.
-bool scatterAtOccluder(const Occluder& occ, const Vec3& hit, double wavelength, core::ChunkSampler& sampler,
-                       PathState& s, TraceResult& acc) {
-  const geometry::Frame& f = occ.frame;
-  const double x = f.localX(hit), y = f.localY(hit);
-  const double alpha = s.dir.dot(f.ex), beta = s.dir.dot(f.ey), gamma = s.dir.dot(f.n);
-  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, sampler.next());
-  const double xi_y = sampler.next();  // drawn even when unused, so dimensions stay aligned across rays
+// Scatters a ray at an occluder (paper eq. 8–10: u_o = u_i + u', the sign of W in the energy).
+// `p` is the hit point in double. Returns false when the ray ends there.
+bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const double* p, double wavelength,
+                       core::ChunkSampler& sampler, PathState& s, TraceResult& acc) {
+  const geometry::Frame& f = obj.frame;
+  const double x = dot(p, f.ex) - obj.origin_x, y = dot(p, f.ey) - obj.origin_y;
+  const double alpha = dot(s.d, f.ex), beta = dot(s.d, f.ey), gamma = dot(s.d, f.n);
+  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, sampler.next(s.index, s.dim));
+  const double xi_y = sampler.next(s.index, s.dim);  // drawn even when unused: dimensions stay aligned
   double weight = sx.weight;
   double v_shift = 0.0;
   if (occ.table_y && weight != 0.0) {
@@ -49,7 +55,7 @@ bool scatterAtOccluder(const Occluder& occ, const Vec3& hit, double wavelength, 
     return false;
   }
   s.energy *= weight;
-  // u_o = u_i + u' (cycles per metre); direction cosines are λ·u.
+  // Direction cosines are λ·u (design.md §1); an imaginary γ is an evanescent wave: the ray ends.
   const double alpha_o = alpha + wavelength * sx.u_shift;
   const double beta_o = beta + wavelength * v_shift;
   const double gamma_sq = 1.0 - alpha_o * alpha_o - beta_o * beta_o;
@@ -58,11 +64,48 @@ bool scatterAtOccluder(const Occluder& occ, const Vec3& hit, double wavelength, 
     return false;
   }
   double gamma_o = std::copysign(std::sqrt(gamma_sq), gamma);
-  if (occ.reflect) gamma_o = -gamma_o;
-  s.dir = alpha_o * f.ex + beta_o * f.ey + gamma_o * f.n;
-  s.origin = hit;
-  s.tnear = 1e-6 * (1.0 + hit.lpNorm<Eigen::Infinity>());
+  if (occ.reflect) gamma_o = -gamma_o;  // paper eq. 9 (eq:reflection): the mirrored outgoing wave
+  double extent = 1.0;
+  for (int c = 0; c < 3; ++c) {
+    s.d[c] = alpha_o * f.ex[c] + beta_o * f.ey[c] + gamma_o * f.n[c];
+    s.o[c] = p[c];
+    extent = std::max(extent, std::abs(p[c]));
+  }
+  s.tnear = 1e-6 * extent;  // clears the occluder's own plane in Embree's float arithmetic
   return true;
+}
+
+// What happens to a ray at its next hit; returns whether it goes on.
+bool followHit(const Scene& scene, int object, float t_embree, double lambda, core::ChunkSampler& sampler,
+               PathState& s, TraceResult& acc) {
+  ++acc.segments;
+  if (object < 0) {
+    acc.escaped += s.energy;
+    return false;
+  }
+  const Scene::ObjectRef& obj = scene.object(object);
+  // Refine Embree's float distance on the object's plane, in double (design.md §1).
+  const double dn = dot(s.d, obj.frame.n);
+  double t = (obj.origin_n - dot(s.o, obj.frame.n)) / dn;
+  if (!(std::isfinite(t) && t > 0)) t = t_embree;
+  const double p[3] = {s.o[0] + t * s.d[0], s.o[1] + t * s.d[1], s.o[2] + t * s.d[2]};
+  switch (obj.kind) {
+    case ObjectKind::Screen: {
+      const receiver::Screen& scr = scene.screens()[obj.index];
+      const int bin = scr.binOf(dot(p, obj.frame.ex) - obj.origin_x, dot(p, obj.frame.ey) - obj.origin_y);
+      if (bin >= 0)
+        acc.screens[obj.index].add(bin, s.energy);
+      else
+        acc.escaped += s.energy;  // clipped by a float round-off at the very edge
+      return false;
+    }
+    case ObjectKind::Absorber:
+      acc.on_absorbers += s.energy;
+      return false;
+    case ObjectKind::Occluder:
+      return scatterAtOccluder(scene.occluders()[obj.index], obj, p, lambda, sampler, s, acc);
+  }
+  return false;
 }
 
 }  // namespace
@@ -80,53 +123,56 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
     for (const auto& s : scene.screens()) r.screens.emplace_back(s.bins());
     return r;
   };
+  // Rays travel in packets (Embree traces a packet at once); each keeps its own state.
+  constexpr int kPacket = geometry::RayPacket::kSize;
   auto body = [&](TraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
     // Quasi-random dimensions: source x, source y, then the first occluder's u' and v'.
     core::ChunkSampler sampler(rng, 4, options.qmc);
-    for (std::uint64_t i = begin; i < end; ++i) {
-      sampler.startRay(i - begin);
-      PathState s;
-      const double sx = (2.0 * sampler.next() - 1.0) * source.half_x_m;
-      const double sy = (2.0 * sampler.next() - 1.0) * source.half_y_m;
-      s.origin = source.frame.origin + sx * source.frame.ex + sy * source.frame.ey;
-      s.dir = dir0;
-      s.energy = ray_energy;
-      s.tnear = 0.0;
-      acc.emitted += ray_energy;
-      ++acc.rays;
-      bool alive = true;
-      for (int bounce = 0; alive; ++bounce) {
+    PathState s[kPacket];
+    geometry::RayPacket packet;
+    geometry::HitPacket hits;
+    for (std::uint64_t first = begin; first < end; first += kPacket) {
+      int alive = 0;
+      for (int k = 0; k < kPacket; ++k) {
+        packet.active[k] = first + k < end ? -1 : 0;
+        if (!packet.active[k]) continue;
+        ++alive;
+        PathState& st = s[k];
+        st.index = first + k - begin;
+        st.dim = 0;
+        const double sx = (2.0 * sampler.next(st.index, st.dim) - 1.0) * source.half_x_m;
+        const double sy = (2.0 * sampler.next(st.index, st.dim) - 1.0) * source.half_y_m;
+        for (int c = 0; c < 3; ++c) {
+          st.o[c] = source.frame.origin[c] + sx * source.frame.ex[c] + sy * source.frame.ey[c];
+          st.d[c] = dir0[c];
+        }
+        st.energy = ray_energy;
+        st.tnear = 0.0;
+        acc.emitted += ray_energy;
+        ++acc.rays;
+      }
+      for (int bounce = 0; alive > 0; ++bounce) {
         if (bounce == options.max_bounces) {
-          acc.bounce_limit += s.energy;
+          for (int k = 0; k < kPacket; ++k)
+            if (packet.active[k]) acc.bounce_limit += s[k].energy;
           break;
         }
-        geometry::Ray ray{s.origin, s.dir, s.tnear, 1e300};
-        const geometry::Hit hit = isect.intersect(ray);
-        ++acc.segments;
-        if (!hit.valid()) {
-          acc.escaped += s.energy;
-          break;
+        for (int k = 0; k < kPacket; ++k) {
+          packet.org_x[k] = static_cast<float>(s[k].o[0]);
+          packet.org_y[k] = static_cast<float>(s[k].o[1]);
+          packet.org_z[k] = static_cast<float>(s[k].o[2]);
+          packet.dir_x[k] = static_cast<float>(s[k].d[0]);
+          packet.dir_y[k] = static_cast<float>(s[k].d[1]);
+          packet.dir_z[k] = static_cast<float>(s[k].d[2]);
+          packet.tnear[k] = static_cast<float>(s[k].tnear);
         }
-        const Scene::ObjectRef& obj = scene.object(hit.object);
-        // Refine Embree's float distance on the object's plane, in double (design.md §1).
-        const double t = obj.frame->planeDistance(s.origin, s.dir);
-        const Vec3 p = s.origin + (std::isfinite(t) && t > 0 ? t : hit.t) * s.dir;
-        switch (obj.kind) {
-          case ObjectKind::Screen: {
-            const receiver::Screen& scr = scene.screens()[obj.index];
-            const int bin = scr.binOf(scr.frame.localX(p), scr.frame.localY(p));
-            if (bin >= 0) acc.screens[obj.index].add(bin, s.energy);
-            else acc.escaped += s.energy;  // clipped by a float round-off at the very edge
-            alive = false;
-            break;
+        isect.intersectPacket(packet, hits);
+        for (int k = 0; k < kPacket; ++k) {
+          if (!packet.active[k]) continue;
+          if (!followHit(scene, hits.object[k], hits.t[k], lambda, sampler, s[k], acc)) {
+            packet.active[k] = 0;
+            --alive;
           }
-          case ObjectKind::Absorber:
-            acc.on_absorbers += s.energy;
-            alive = false;
-            break;
-          case ObjectKind::Occluder:
-            alive = scatterAtOccluder(scene.occluders()[obj.index], p, lambda, sampler, s, acc);
-            break;
         }
       }
     }

@@ -14,6 +14,7 @@ WbsdfTable::WbsdfTable(TableLayout layout, std::vector<double> masses, double tr
     : layout_(layout), masses_(std::move(masses)), truncated_mass_(truncated_mass) {
   DIFFRAY_CHECK(layout_.nx >= 1 && layout_.nu >= 1 && layout_.dx_m > 0 && layout_.du_per_m > 0);
   DIFFRAY_CHECK(masses_.size() == static_cast<std::size_t>(layout_.nx) * layout_.nu);
+  inv_dx_ = 1.0 / layout_.dx_m;
   row_abs_.resize(layout_.nx);
   cdf_.resize(static_cast<std::size_t>(layout_.nx) * (layout_.nu + 1));
   guide_.resize(masses_.size());
@@ -107,7 +108,7 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::fromWigner(const WignerGrid& g) {
 }
 
 int WbsdfTable::rowOf(double x) const {
-  double r = (x - layout_.x0_m) / layout_.dx_m;
+  double r = (x - layout_.x0_m) * inv_dx_;
   if (layout_.periodic) {
     r = std::fmod(r, static_cast<double>(layout_.nx));
     if (r < 0) r += layout_.nx;
@@ -123,12 +124,19 @@ WbsdfTable::Sample WbsdfTable::sample(double x, double xi) const {
   if (row < 0 || row_abs_[row] <= 0.0) return {0.0, 0.0};
   const double* c = &cdf_[static_cast<std::size_t>(row) * (layout_.nu + 1)];
   const double target = xi * row_abs_[row];
-  // First k with c[k+1] > target (cells of zero mass are never chosen), starting from the guide entry,
-  // which never lies past it.
+  // First k with c[k+1] > target (cells of zero mass are never chosen). It lies between the guide
+  // entries of this quantile bucket and the next, usually 0–2 cells apart: bisect that short range.
   const int nu = layout_.nu;
   const int bucket = std::min(static_cast<int>(xi * nu), nu - 1);
-  int k = static_cast<int>(guide_[static_cast<std::size_t>(row) * nu + bucket]);
-  while (k < nu - 1 && c[k + 1] <= target) ++k;
+  const std::uint32_t* g = &guide_[static_cast<std::size_t>(row) * nu];
+  int k = static_cast<int>(g[bucket]);
+  int hi = bucket + 1 < nu ? static_cast<int>(g[bucket + 1]) : nu - 1;
+  while (k < hi) {
+    const int mid = (k + hi) >> 1;
+    const bool right = c[mid + 1] <= target;
+    k = right ? mid + 1 : k;
+    hi = right ? hi : mid;
+  }
   const double m = masses_[static_cast<std::size_t>(row) * layout_.nu + k];
   Sample s;
   s.weight = m >= 0 ? row_abs_[row] : -row_abs_[row];

@@ -36,15 +36,11 @@ class ChunkSampler {
  public:
   static constexpr int kMaxDims = 8;
   ChunkSampler(Rng& rng, int dims, bool qmc);
-  /// Starts ray `index` (0-based within the chunk).
-  void startRay(std::uint64_t index) {
-    index_ = index;
-    dim_ = 0;
-  }
-  double next() {
-    if (!qmc_ || dim_ >= dims_) return rng_.uniform();
-    const double v = shift_[dim_] + static_cast<double>(index_ + 1) * alpha_[dim_];
-    ++dim_;
+  /// Uniform number `dim` of ray `index` (0-based within the chunk); the caller advances `dim`.
+  double next(std::uint64_t index, int& dim) {
+    const int d = dim++;
+    if (!qmc_ || d >= dims_) return rng_.uniform();
+    const double v = shift_[d] + static_cast<double>(index + 1) * alpha_[d];
     return v - static_cast<double>(static_cast<std::int64_t>(v));  // v ≥ 0: truncation is floor
   }
   Rng& rng() { return rng_; }
@@ -55,8 +51,6 @@ class ChunkSampler {
   bool qmc_;
   double shift_[kMaxDims] = {};
   double alpha_[kMaxDims] = {};
-  std::uint64_t index_ = 0;
-  int dim_ = 0;
 };
 
 }  // namespace diffray::core

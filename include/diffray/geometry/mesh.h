@@ -39,11 +39,30 @@ struct Hit {
   bool valid() const { return object >= 0; }
 };
 
+/// Up to kPacket rays in float, structure-of-arrays, as Embree's packet API takes them. Lanes with
+/// active = 0 are ignored.
+struct RayPacket {
+  static constexpr int kSize = 8;
+  alignas(32) float org_x[kSize], org_y[kSize], org_z[kSize];
+  alignas(32) float dir_x[kSize], dir_y[kSize], dir_z[kSize];
+  alignas(32) float tnear[kSize];
+  alignas(32) int active[kSize];  ///< −1 active, 0 inactive (Embree's valid mask)
+};
+
+/// The nearest hit of each lane: object < 0 where the ray escaped; t is Embree's (float) distance.
+struct HitPacket {
+  float t[RayPacket::kSize];
+  int object[RayPacket::kSize];
+};
+
 /// Anything that finds the nearest hit. Implementations are thread-safe for concurrent intersect().
 class Intersector {
  public:
   virtual ~Intersector() = default;
   virtual Hit intersect(const Ray& ray) const = 0;
+  /// Nearest hits of a packet's active lanes. The default loops over intersect(); Embree traces the
+  /// packet at once.
+  virtual void intersectPacket(const RayPacket& rays, HitPacket& hits) const;
 };
 
 }  // namespace diffray::geometry

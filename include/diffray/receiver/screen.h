@@ -18,7 +18,7 @@ struct Screen {
 
   /// Bin of the local point (x, y), or −1 outside the screen.
   int binOf(double x_m, double y_m) const {
-    const double fx = (x_m + half_x_m) / (2.0 * half_x_m), fy = (y_m + half_y_m) / (2.0 * half_y_m);
+    const double fx = (x_m + half_x_m) * (0.5 / half_x_m), fy = (y_m + half_y_m) * (0.5 / half_y_m);
     if (!(fx >= 0.0 && fx < 1.0 && fy >= 0.0 && fy < 1.0)) return -1;
     return static_cast<int>(fx * nx) + nx * static_cast<int>(fy * ny);
   }

@@ -55,7 +55,8 @@ class Scene {
   struct ObjectRef {
     ObjectKind kind;
     int index;  ///< into occluders(), screens() or absorbers()
-    const geometry::Frame* frame;
+    geometry::Frame frame;  ///< a copy, so the hot loop reads it without another indirection
+    double origin_n, origin_x, origin_y;  ///< origin·n, origin·ex, origin·ey: plane and local offsets
   };
   const ObjectRef& object(int id) const { return objects_[id]; }
   const std::vector<Occluder>& occluders() const { return occluders_; }

@@ -77,6 +77,7 @@ class WbsdfTable {
   /// Row of x, or −1 outside a non-periodic table (−2 when open beyond it).
   int rowOf(double x_m) const;
   TableLayout layout_;
+  double inv_dx_ = 1.0;
   std::vector<double> masses_;
   std::vector<double> row_abs_;
   std::vector<double> cdf_;  ///< per row: nu + 1 running sums of |mass|, starting at 0
