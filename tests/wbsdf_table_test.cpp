@@ -15,6 +15,7 @@
 #include "chi2.h"
 #include "wbsdf_fixtures.h"
 #include "diffray/wbsdf/microstructure.h"
+#include "diffray/wbsdf/rough_surface.h"
 #include "diffray/wbsdf/table.h"
 #include "diffray/wbsdf/wigner_fft.h"
 
@@ -305,3 +306,26 @@ TEST(StatWbsdfSampler, GratingSamplesLineCentres) {
   for (double xf : {0.05, 0.3, 0.77}) checkSampler(*table, xf * period, 200000, seed++);
 }
 
+
+// The rough surface's table (rough_surface.h): its second moment in u against the closed form from the
+// correlation function, ∫u²W du = −γ''(0)/(4π²) = g/(2π²ℓ²) for γ(x') = exp(−g(1 − e^{−x'²/ℓ²})) (design.md
+// §1, paper eq:WDF_gamma); total mass 1. Tolerance: the cell-centre quadrature error du²/12 per unit mass
+// plus 1e-3 relative for the lobe beyond the tabulated range (Gaussian tails, far below that here).
+TEST(WbsdfTableRough, SecondMomentMatchesCorrelationCurvature) {
+  const double lambda = 0.5e-6, sigma_h = 0.2e-6, ell = 4e-6;
+  const auto wdf = dw::roughSurfaceWdf(sigma_h, ell, lambda, 1.0, 4096, 2.0 / lambda);
+  const auto table = dw::roughSurfaceTable(wdf);
+  const double g = std::pow(2.0 * M_PI * (sigma_h / lambda) * 2.0, 2);
+  const auto& L = table->layout();
+  double mass = 0.0, second = 0.0;
+  for (int k = 0; k < L.nu; ++k) {
+    const double u = L.u0_per_m + (k + 0.5) * L.du_per_m;
+    mass += table->mass(0, k);
+    second += table->mass(0, k) * u * u;
+  }
+  const double expected = g / (2.0 * M_PI * M_PI * ell * ell);
+  EXPECT_NEAR(mass, 1.0, 1e-6);
+  EXPECT_NEAR(second, expected, 1e-3 * expected + L.du_per_m * L.du_per_m / 12.0);
+  // Stationary: the same row at any x.
+  EXPECT_EQ(table->sample(-3.7, 0.3).u_shift, table->sample(12.1, 0.3).u_shift);
+}

@@ -13,6 +13,7 @@
 #include "diffray/core/parallel.h"
 #include "diffray/wbsdf/microstructure.h"
 #include "diffray/wbsdf/profile_csv.h"
+#include "diffray/wbsdf/rough_surface.h"
 #include "diffray/wbsdf/table.h"
 
 namespace diffray::cli {
@@ -26,6 +27,7 @@ struct WdfOptions {
   double width_m = 100e-6, spacing_m = 250e-6, period_m = 1.6e-6, modulation = 2.0, extent_m = 0.0;
   double wavelength_m = 500e-9, u_range_per_m = 0.0;
   int count = 2;
+  double sigma_h_m = 0.0, corr_length_m = 0.0, cos_incidence = 1.0;
 };
 
 std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
@@ -35,6 +37,14 @@ std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
   t.u_half_range_per_m = o.u_range_per_m;
   t.max_cells = 4'000'000;  // a table to look at, not to trace with: coarsen u rather than refuse
   t.coarsen_to_fit = true;
+  if (o.kind == "rough") {
+    core::requirePositive("--sigma-h", o.sigma_h_m);
+    core::requirePositive("--corr-length", o.corr_length_m);
+    if (!(o.cos_incidence >= 0.0 && o.cos_incidence <= 1.0))
+      throw core::InputError("--cos-incidence", "must lie in [0, 1]");
+    return wbsdf::roughSurfaceTable(
+        wbsdf::roughSurfaceWdf(o.sigma_h_m, o.corr_length_m, o.wavelength_m, o.cos_incidence, 4096, 2.0 / o.wavelength_m));
+  }
   if (o.kind == "profile") {
     if (o.profile.empty()) throw core::InputError("--profile", "KIND profile needs --profile FILE.csv");
     return wbsdf::profileTable(wbsdf::readProfileCsv(o.profile), o.wavelength_m);
@@ -58,7 +68,7 @@ std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
     m = std::make_shared<wbsdf::PhaseGrating>(o.period_m, o.modulation);
   } else {
     throw core::InputError("wdf", "unknown microstructure '" + o.kind +
-                                      "' (kinds: slit, slits, half-plane, grating, profile)");
+                                      "' (kinds: slit, slits, half-plane, grating, rough, profile)");
   }
   return wbsdf::WbsdfTable::build(*m, t);
 }
@@ -69,8 +79,12 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
   auto o = std::make_shared<WdfOptions>();
   CLI::App* sub = app.add_subcommand(
       "wdf", "Tabulate the Wigner distribution (WBSDF) of a microstructure: slit, slits, half-plane, "
-             "grating, or profile (CSV: x [m], amplitude 0..1, phase [rad]).");
-  sub->add_option("kind", o->kind, "slit | slits | half-plane | grating | profile")->required();
+             "grating, rough (Gaussian statistics, paper eq:WDF_gamma) or profile (CSV: x [m], amplitude "
+             "0..1, phase [rad]).");
+  sub->add_option("kind", o->kind, "slit | slits | half-plane | grating | rough | profile")->required();
+  sub->add_option("--sigma-h", o->sigma_h_m, "rough: height standard deviation (m)");
+  sub->add_option("--corr-length", o->corr_length_m, "rough: height correlation length (m)");
+  sub->add_option("--cos-incidence", o->cos_incidence, "rough: cosine of the incidence angle")->capture_default_str();
   sub->add_option("--wavelength", o->wavelength_m, "wavelength (m)")->capture_default_str();
   sub->add_option("--width", o->width_m, "slit width (m)")->capture_default_str();
   sub->add_option("--spacing", o->spacing_m, "slit spacing, centre to centre (m)")->capture_default_str();

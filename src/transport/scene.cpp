@@ -32,6 +32,13 @@ int Scene::addScreen(receiver::Screen s) {
   return addObject(ObjectKind::Screen, static_cast<int>(screens_.size()) - 1, s.frame, s.half_x_m, s.half_y_m);
 }
 
+int Scene::addSphere(receiver::Sphere s) {
+  core::requirePositive("sphere radius", s.radius_m);
+  for (int c = 0; c < 3; ++c) core::requireFinite("sphere centre", s.centre[c]);
+  spheres_.push_back(s);
+  return static_cast<int>(spheres_.size()) - 1;
+}
+
 int Scene::addAbsorber(Absorber a) {
   absorbers_.push_back(a);
   return addObject(ObjectKind::Absorber, static_cast<int>(absorbers_.size()) - 1, a.frame, a.half_x_m, a.half_y_m);

@@ -1,6 +1,7 @@
 #include "diffray/transport/tracer.h"
 
 #include <cmath>
+#include <limits>
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -11,6 +12,7 @@ using core::Vec3;
 
 void TraceResult::merge(const TraceResult& o) {
   for (std::size_t i = 0; i < screens.size(); ++i) screens[i].merge(o.screens[i]);
+  for (std::size_t i = 0; i < spheres.size(); ++i) spheres[i].merge(o.spheres[i]);
   emitted += o.emitted;
   absorbed += o.absorbed;
   evanescent += o.evanescent;
@@ -75,11 +77,19 @@ bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const d
   return true;
 }
 
+// Deposits the ray's energy in every sphere its segment [tnear, t_end) passes through.
+void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
+  const auto& spheres = scene.spheres();
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    if (spheres[i].crossedBy(s.o, s.d, s.tnear, t_end)) acc.spheres[i].add(0, s.energy);
+}
+
 // What happens to a ray at its next hit; returns whether it goes on.
 bool followHit(const Scene& scene, int object, float t_embree, double lambda, core::ChunkSampler& sampler,
                PathState& s, TraceResult& acc) {
   ++acc.segments;
   if (object < 0) {
+    tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
     acc.escaped += s.energy;
     return false;
   }
@@ -88,6 +98,7 @@ bool followHit(const Scene& scene, int object, float t_embree, double lambda, co
   const double dn = dot(s.d, obj.frame.n);
   double t = (obj.origin_n - dot(s.o, obj.frame.n)) / dn;
   if (!(std::isfinite(t) && t > 0)) t = t_embree;
+  tallySpheres(scene, s, t, acc);
   const double p[3] = {s.o[0] + t * s.d[0], s.o[1] + t * s.d[1], s.o[2] + t * s.d[2]};
   switch (obj.kind) {
     case ObjectKind::Screen: {
@@ -121,6 +132,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
   auto make = [&] {
     TraceResult r;
     for (const auto& s : scene.screens()) r.screens.emplace_back(s.bins());
+    r.spheres.assign(scene.spheres().size(), receiver::ScreenTally(1));
     return r;
   };
   // Rays travel in packets (Embree traces a packet at once); each keeps its own state.
@@ -177,6 +189,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
       }
     }
     for (auto& t : acc.screens) t.closeChunk();
+    for (auto& t : acc.spheres) t.closeChunk();
   };
   auto progress = [&](std::uint64_t n) {
     if (options.on_progress) options.on_progress(n);

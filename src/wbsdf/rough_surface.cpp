@@ -1,4 +1,5 @@
 #include "diffray/wbsdf/rough_surface.h"
+#include "diffray/wbsdf/table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -111,6 +112,22 @@ RoughSurfaceWdf roughSurfaceWdf(double sigma_h_m, double corr_length_m, double w
     value = std::max(value, 0.0);
   }
   return result;
+}
+
+std::shared_ptr<const WbsdfTable> roughSurfaceTable(const RoughSurfaceWdf& wdf) {
+  TableLayout L;
+  L.nx = 1;
+  L.dx_m = 1.0;
+  L.periodic = true;  // one row, whatever x
+  L.nu = static_cast<int>(wdf.diffuse.size());
+  L.du_per_m = wdf.du_per_m;
+  L.u0_per_m = wdf.u0_per_m - 0.5 * wdf.du_per_m;
+  std::vector<double> masses(wdf.diffuse.size());
+  for (std::size_t k = 0; k < masses.size(); ++k) masses[k] = wdf.diffuse[k] * wdf.du_per_m;
+  const int centre = static_cast<int>(std::lround(-wdf.u0_per_m / wdf.du_per_m));
+  DIFFRAY_CHECK(centre >= 0 && centre < L.nu);
+  masses[static_cast<std::size_t>(centre)] += wdf.specular_weight;
+  return std::make_shared<WbsdfTable>(L, std::move(masses));
 }
 
 }  // namespace diffray::wbsdf

@@ -10,6 +10,7 @@
 #include "diffray/geometry/embree_scene.h"
 #include "diffray/geometry/frame.h"
 #include "diffray/receiver/screen.h"
+#include "diffray/receiver/sphere.h"
 #include "diffray/wbsdf/table.h"
 
 namespace diffray::transport {
@@ -45,6 +46,8 @@ class Scene {
   int addOccluder(Occluder o);
   int addScreen(receiver::Screen s);
   int addAbsorber(Absorber a);
+  /// A transparent listener sphere (not part of the Embree scene: tested analytically per segment).
+  int addSphere(receiver::Sphere s);
   /// Builds the Embree scene (brute_force = true: the test back end). Call once after adding objects.
   void build(bool brute_force = false);
 
@@ -61,11 +64,13 @@ class Scene {
   const ObjectRef& object(int id) const { return objects_[id]; }
   const std::vector<Occluder>& occluders() const { return occluders_; }
   const std::vector<receiver::Screen>& screens() const { return screens_; }
+  const std::vector<receiver::Sphere>& spheres() const { return spheres_; }
 
  private:
   int addObject(ObjectKind kind, int index, const geometry::Frame& f, double hx, double hy);
   std::vector<Occluder> occluders_;
   std::vector<receiver::Screen> screens_;
+  std::vector<receiver::Sphere> spheres_;
   std::vector<Absorber> absorbers_;
   std::vector<ObjectRef> objects_;
   geometry::Mesh mesh_;

@@ -3,7 +3,8 @@
 // are intersected with the scene (Embree), and at each occluder draw a shift (u', v') from its WBSDF
 // (paper eq. 8, angle-shift invariance: u_o = u_i + u'); the sign of W travels in the ray's energy.
 // Outgoing direction (λu_o, λv_o, ±√(1 − λ²(u_o² + v_o²))); an imaginary root is an evanescent wave:
-// the ray ends and its energy is tallied. Screens record and absorb rays.
+// the ray ends and its energy is tallied. Screens record and absorb rays; spheres record the rays that
+// pass through them and let them go on.
 // Deterministic: the same seed gives identical tallies for any thread count (core/parallel.h).
 #include <cstdint>
 #include <functional>
@@ -28,6 +29,7 @@ struct TraceOptions {
 /// Signed energies (in the source's power units) of every fate a ray can meet.
 struct TraceResult {
   std::vector<receiver::ScreenTally> screens;
+  std::vector<receiver::ScreenTally> spheres;  ///< one bin each: the energy of every crossing
   double emitted = 0, absorbed = 0, evanescent = 0, escaped = 0, on_absorbers = 0, bounce_limit = 0;
   std::uint64_t rays = 0;
   std::uint64_t segments = 0;  ///< intersection queries made

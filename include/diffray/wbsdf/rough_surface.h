@@ -24,6 +24,7 @@
 // 1e-12 of the peak, whatever nu and u_max are; the caller chooses u_max (weight beyond ±u_max, often
 // evanescent, is diffuse_weight − Σ diffuse·du).
 // Thread-safety: a pure function; may be called concurrently.
+#include <memory>
 #include <vector>
 
 namespace diffray::wbsdf {
@@ -45,5 +46,11 @@ RoughSurfaceWdf roughSurfaceWdf(double sigma_h_m, double corr_length_m, double w
 
 /// The phase variance σ_α² = [2π(σ_h/λ)(1 + cosθ_i)]² (paper, after eq:surface).
 double roughPhaseVariance(double sigma_h_m, double wavelength_m, double cos_theta_i);
+
+class WbsdfTable;
+/// The rough surface as a WBSDF table (for one wavelength and incidence): one row valid at every x (the
+/// statistics are stationary), cells centred on the lobe's columns, the specular δ put in the centre
+/// cell (so the mirror direction is blurred by at most du). Sampling it is importance sampling of the lobe.
+std::shared_ptr<const WbsdfTable> roughSurfaceTable(const RoughSurfaceWdf& wdf);
 
 }  // namespace diffray::wbsdf
