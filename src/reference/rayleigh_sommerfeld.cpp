@@ -1,6 +1,7 @@
 // 2D Rayleigh–Sommerfeld reference by direct quadrature (design.md §3). Self-contained: its own
 // Gauss–Legendre rule, no code shared with the ray tracer.
 #include "diffray/reference/rayleigh_sommerfeld.h"
+#include "diffray/reference/quadrature.h"
 
 #include <algorithm>
 #include <array>
@@ -18,43 +19,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr int kNodes = 16;              // Gauss–Legendre nodes per panel
 constexpr double kPanelFraction = 0.5;  // panel length / min(local wavelength, r)
 constexpr long kMaxPanels = 10000000;
-
-struct GaussRule {
-  std::array<double, kNodes> nodes{};
-  std::array<double, kNodes> weights{};
-};
-
-// Gauss–Legendre nodes and weights on [−1, 1] by Newton iteration on P_n from Tricomi's initial guesses;
-// weights 2/((1 − x²) P_n'(x)²).
-GaussRule makeGaussRule() {
-  GaussRule rule;
-  const int n = kNodes;
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double derivative = 1.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p_prev = 1.0;
-      double p = x;
-      for (int j = 2; j <= n; ++j) {
-        const double p_next = ((2.0 * j - 1.0) * x * p - (j - 1.0) * p_prev) / j;
-        p_prev = p;
-        p = p_next;
-      }
-      derivative = n * (x * p - p_prev) / (x * x - 1.0);
-      const double dx = p / derivative;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    rule.nodes[static_cast<std::size_t>(i)] = x;
-    rule.weights[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
-  }
-  return rule;
-}
-
-const GaussRule& gaussRule() {
-  static const GaussRule rule = makeGaussRule();  // thread-safe initialisation (C++11 magic statics)
-  return rule;
-}
 
 // Everything the integrand needs for one field point.
 struct FieldPoint {
@@ -78,7 +42,7 @@ Complex integrand(const FieldPoint& p, double x_m) {
 // the foot point X. Panel length is kPanelFraction·min(λ_eff, r) at the panel's near end; r only grows
 // along the march, so every panel resolves both the phase (≤ π per panel) and the amplitude scale r.
 Complex integrateAway(const FieldPoint& p, double start_m, double end_m, long& panels) {
-  const GaussRule& rule = gaussRule();
+  const GaussRule& rule = gaussRule16();
   const double direction = end_m >= start_m ? 1.0 : -1.0;
   const double length_m = std::abs(end_m - start_m);
   Complex sum(0.0, 0.0);

@@ -105,7 +105,7 @@ bool followHit(const Scene& scene, int object, float t_embree, double lambda, co
       const receiver::Screen& scr = scene.screens()[obj.index];
       const int bin = scr.binOf(dot(p, obj.frame.ex) - obj.origin_x, dot(p, obj.frame.ey) - obj.origin_y);
       if (bin >= 0)
-        acc.screens[obj.index].add(bin, s.energy);
+        acc.screens[obj.index].add(bin, scr.intensity ? s.energy / std::abs(dn) : s.energy);
       else
         acc.escaped += s.energy;  // clipped by a float round-off at the very edge
       return false;

@@ -5,6 +5,7 @@
 
 #include "diffray/core/error.h"
 #include "diffray/core/math.h"
+#include "diffray/reference/angular_spectrum.h"
 #include "diffray/reference/fraunhofer.h"
 #include "diffray/reference/fresnel.h"
 #include "diffray/reference/rayleigh_sommerfeld.h"
@@ -26,6 +27,15 @@ int binsOf(const Params& p, const std::string& name) {
 
 std::uint64_t raysOf(const RunOptions& o, std::uint64_t fallback) { return o.rays ? o.rays : fallback; }
 
+// Whether --model asks for the angle-impact WBSDF; cases that cannot use it pass two_d = false.
+bool modelIsAngleImpact(const RunOptions& o, bool two_d = true) {
+  if (o.model == "wigner") return false;
+  if (o.model != "angle-impact")
+    throw core::InputError("--model", "unknown model '" + o.model + "' (models: wigner, angle-impact)");
+  if (!two_d) throw core::InputError("--model", "angle-impact applies to the 2D aperture cases only");
+  return true;
+}
+
 template <class F>
 CaseResult timed(const std::string& name, F&& run) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -46,6 +56,7 @@ CaseInfo slitFraunhoferCase() {
               {"distance", {5.0}, "slit to screen (m); far field needs distance >> a²/λ"},
               {"screen", {0.0}, "screen half-width (m); 0 = three diffraction zeros"},
               {"bins", {151}, "screen bins"}};
+  c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fraunhofer", [&](CaseResult& r) {
       const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
@@ -63,6 +74,7 @@ CaseInfo slitFraunhoferCase() {
         return reference::farFieldScreenIntensity2D(x, z, lambda,
                                                     reference::slitFraunhofer(reference::screenU(x, z, lambda), a));
       };
+      s.angle_impact = modelIsAngleImpact(o);
       runAperture(s, o, raysOf(o, 32'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
@@ -78,6 +90,7 @@ CaseInfo doubleSlitCase() {
               {"distance", {10.0}, "slits to screen (m)"},
               {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero"},
               {"bins", {201}, "screen bins"}};
+  c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("double-slit", [&](CaseResult& r) {
       const double a = one(p, "width"), d = one(p, "spacing"), lambda = one(p, "wavelength"),
@@ -97,6 +110,7 @@ CaseInfo doubleSlitCase() {
         const double u = reference::screenU(x, z, lambda);
         return reference::farFieldScreenIntensity2D(x, z, lambda, reference::doubleSlitFraunhofer(u, a, d));
       };
+      s.angle_impact = modelIsAngleImpact(o);
       runAperture(s, o, raysOf(o, 32'000'000), r);
     });
   };
@@ -134,6 +148,7 @@ CaseInfo rectApertureCase() {
         const double t2 = reference::rectFraunhofer(x / (rr * lambda), y / (rr * lambda), a, b);
         return t2 * (z / rr) * (z / rr) / (lambda * rr * lambda * rr);
       };
+      modelIsAngleImpact(o, false);
       runAperture(s, o, raysOf(o, 32'000'000), r);
     });
   };
@@ -148,6 +163,7 @@ CaseInfo slitFresnelCase() {
               {"distance", {0.5}, "slit to screen (m); Fresnel number a²/(λz)"},
               {"screen", {0.0}, "screen half-width (m); 0 = 1.5 a"},
               {"bins", {151}, "screen bins"}};
+  c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fresnel", [&](CaseResult& r) {
       const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
@@ -162,6 +178,7 @@ CaseInfo slitFresnelCase() {
       s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 1.5 * a;
       s.bins_x = binsOf(p, "bins");
       s.reference = [=](double x, double) { return reference::fresnelSlitIntensity(x, a, lambda, z); };
+      s.angle_impact = modelIsAngleImpact(o);
       runAperture(s, o, raysOf(o, 16'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
@@ -178,6 +195,7 @@ CaseInfo doorRsCase() {
               {"screen", {3.0}, "half-length of the observation line (m)"},
               {"bins", {121}, "bins along the line"},
               {"temperature", {20.0}, "air temperature (°C), sets the speed of sound"}};
+  c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("door-rs", [&](CaseResult& r) {
       const double a = one(p, "width"), z = one(p, "distance");
@@ -197,9 +215,13 @@ CaseInfo doorRsCase() {
         s.distance_m = z;
         s.screen_half_x_m = one(p, "screen");
         s.bins_x = binsOf(p, "bins");
+        s.angle_impact = modelIsAngleImpact(o);
         const std::vector<std::pair<double, double>> opening{{-0.5 * a, 0.5 * a}};
         s.reference = [=](double x, double) {
           return reference::rayleighSommerfeldIntensity2D(opening, x, z, lambda);
+        };
+        s.alt_reference = [=](double x, double) {
+          return reference::propagatingIntensity2D(opening, x, z, lambda);
         };
         CaseResult part;
         runAperture(s, o, rays / freqs.size(), part);
@@ -211,6 +233,12 @@ CaseInfo doorRsCase() {
         r.rays += part.rays;
         r.negative_energy_fraction = std::max(r.negative_energy_fraction, part.negative_energy_fraction);
         for (const auto& [k, v] : part.extra) r.extra[k + "[" + label + "]"] = v;
+        // The same rays against the propagating field alone (no evanescent near field): what an exact
+        // straight-ray transport can reach.
+        double peak = 0.0, worst = 0.0;
+        for (const Row& row : part.rows) peak = std::max(peak, row.alt_reference);
+        for (const Row& row : part.rows) worst = std::max(worst, std::abs(row.traced - row.alt_reference) / peak);
+        r.extra["max_abs_error_vs_propagating_rel_peak[" + label + "]"] = worst;
       }
     });
   };

@@ -19,6 +19,7 @@ CaseInfo gratingOrdersCase() {
               {"periods", {64}, "illuminated periods"}};
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
+    if (o.model != "wigner") throw core::InputError("--model", "grating-orders takes the wigner model only");
     const double period = p.at("period")[0], m = p.at("modulation")[0], lambda = p.at("wavelength")[0];
     const double periods = p.at("periods")[0];
     core::requirePositive("--period", period);

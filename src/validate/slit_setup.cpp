@@ -6,6 +6,7 @@
 #include "diffray/core/error.h"
 #include "diffray/core/math.h"
 #include "diffray/transport/tracer.h"
+#include "diffray/wbsdf/angle_impact.h"
 
 namespace diffray::validate {
 
@@ -48,9 +49,28 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
 
   transport::Scene scene;
   transport::Occluder occ;
-  occ.table_x = tableFor(*s.along_x, s, s.screen_half_x_m, s.bins_x);
+  if (s.angle_impact) {
+    const auto* openings = dynamic_cast<const wbsdf::Openings*>(s.along_x);
+    DIFFRAY_CHECK(openings != nullptr && two_d);
+    const auto [lo, hi] = openings->support();
+    wbsdf::AngleImpactOptions ai;
+    ai.wavelength_m = s.wavelength_m;
+    ai.x_lo_m = lo;
+    ai.x_hi_m = hi;
+    // Same resolution rules as the Wigner tables: cells move a ray by at most 1/8 of a bin.
+    const double bin_m = 2.0 * s.screen_half_x_m / s.bins_x;
+    ai.margin_m = 4.0 * s.wavelength_m;
+    ai.nx = static_cast<int>(std::ceil((hi - lo + 2.0 * ai.margin_m) / (std::min(bin_m, hi - lo) / 8.0)));
+    ai.u_half_range_per_m = usefulShiftRange(s.wavelength_m, s.screen_half_x_m, 0.5 * (hi - lo), s.distance_m);
+    ai.nu = static_cast<int>(std::ceil(2.0 * ai.u_half_range_per_m / (bin_m / (8.0 * s.wavelength_m * s.distance_m))));
+    occ.table_x = wbsdf::angleImpactTable(
+        [openings](double u) { return wbsdf::openingsSpectrum(*openings, u); }, ai);
+  } else {
+    occ.table_x = tableFor(*s.along_x, s, s.screen_half_x_m, s.bins_x);
+  }
   if (!two_d) occ.table_y = tableFor(*s.along_y, s, s.screen_half_y_m, s.bins_y);
-  const auto [x0, x1] = s.along_x->support();
+  const double x0 = occ.table_x->layout().x0_m;
+  const double x1 = x0 + occ.table_x->layout().nx * occ.table_x->layout().dx_m;
   const auto [y0, y1] = two_d ? std::pair<double, double>{-0.5, 0.5} : s.along_y->support();
   occ.half_x_m = 1.5 * std::max(std::abs(x0), std::abs(x1));
   occ.half_y_m = 1.5 * std::max(std::abs(y0), std::abs(y1));
@@ -62,6 +82,7 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
   screen.half_y_m = two_d ? 0.6 : s.screen_half_y_m;
   screen.nx = s.bins_x;
   screen.ny = two_d ? 1 : s.bins_y;
+  screen.intensity = s.angle_impact;
   scene.addScreen(screen);
   scene.build();
 
@@ -92,14 +113,18 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
       row.traced = tally.sum[bin] / bin_area;
       row.std_error = tally.standardError(bin) / bin_area;
       // The oracle averaged over the bin (Gauss–Legendre in x, and in y for 2D screens).
-      double ref = 0.0;
-      for (int i = 0; i < 8; ++i)
-        for (int j = 0; j < ny_ref; ++j) {
-          const double x = row.x_m + 0.5 * screen.binWidthX() * gl.nodes[i];
-          const double y = two_d ? 0.0 : row.y_m + 0.5 * screen.binWidthY() * gl.nodes[j];
-          ref += 0.5 * gl.weights[i] * (two_d ? 1.0 : 0.5 * gl.weights[j]) * s.reference(x, y);
-        }
-      row.reference = ref;
+      auto binAverage = [&](const std::function<double(double, double)>& f) {
+        double ref = 0.0;
+        for (int i = 0; i < 8; ++i)
+          for (int j = 0; j < ny_ref; ++j) {
+            const double x = row.x_m + 0.5 * screen.binWidthX() * gl.nodes[i];
+            const double y = two_d ? 0.0 : row.y_m + 0.5 * screen.binWidthY() * gl.nodes[j];
+            ref += 0.5 * gl.weights[i] * (two_d ? 1.0 : 0.5 * gl.weights[j]) * f(x, y);
+          }
+        return ref;
+      };
+      row.reference = binAverage(s.reference);
+      if (s.alt_reference) row.alt_reference = binAverage(s.alt_reference);
       result.rows.push_back(row);
     }
   }

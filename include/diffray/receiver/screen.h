@@ -15,6 +15,10 @@ struct Screen {
   geometry::Frame frame;
   double half_x_m = 1.0, half_y_m = 1.0;
   int nx = 1, ny = 1;
+  /// false: bins hold the energy crossing them (flux). true: each ray counts energy/|cos| to the screen's
+  /// normal, so bin energy / bin area estimates the intensity, as a transparent probe would see it (what
+  /// angle-impact rays need to reproduce |U|², wbsdf/angle_impact.h).
+  bool intensity = false;
 
   /// Bin of the local point (x, y), or −1 outside the screen.
   int binOf(double x_m, double y_m) const {

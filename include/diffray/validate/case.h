@@ -23,6 +23,7 @@ struct ParamSpec {
 struct Row {
   double x_m = 0, y_m = 0;
   double traced = 0, reference = 0, std_error = 0;
+  double alt_reference = 0;  ///< a second oracle where a case has one (door-rs: the propagating field)
   std::string label;  ///< e.g. "f=500Hz" or "order=1"
 };
 
@@ -44,6 +45,9 @@ struct RunOptions {
   std::uint64_t rays = 0;  ///< 0: the case's default
   std::uint64_t seed = 1;
   bool qmc = true;  ///< randomised quasi-Monte Carlo (see core::ChunkSampler); false = plain Monte Carlo
+  /// "wigner": the paper's WBSDF (default); "angle-impact": the angle-impact WBSDF (wbsdf/angle_impact.h),
+  /// exact straight-ray transport of the propagating field in 2D (2D aperture cases only).
+  std::string model = "wigner";
   std::function<void(std::uint64_t)> on_progress;
 };
 
@@ -53,6 +57,7 @@ struct CaseInfo {
   std::vector<ParamSpec> params;
   std::uint64_t default_rays;
   std::function<CaseResult(const Params&, const RunOptions&)> run;
+  bool angle_impact = false;  ///< whether RunOptions::model = "angle-impact" applies
 };
 
 /// Every case, in the order `validate all` runs them.

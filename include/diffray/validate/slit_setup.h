@@ -21,8 +21,13 @@ struct ApertureSetup {
   double screen_half_x_m = 0, screen_half_y_m = 0;
   int bins_x = 1, bins_y = 1;
   int max_rows_per_feature = 1024;
+  /// Use the angle-impact WBSDF (wbsdf/angle_impact.h, exact straight-ray transport in 2D) with an
+  /// intensity screen instead of the Wigner distribution with a flux screen. 2D set-ups of Openings only.
+  bool angle_impact = false;
   /// Reference intensity at screen point (x, y), relative to the incident intensity.
   std::function<double(double, double)> reference;
+  /// Optional second oracle, averaged over each bin like the first (Row::alt_reference).
+  std::function<double(double, double)> alt_reference;
 };
 
 /// Traces the set-up and fills rows (one per bin) and the energy balance into `result.extra`.
