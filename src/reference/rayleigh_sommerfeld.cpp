@@ -68,24 +68,15 @@ Complex integrateAway(const FieldPoint& p, double start_m, double end_m, long& p
   return direction * sum;
 }
 
-void requireFiniteArg(const std::string& where, double value) {
-  if (!std::isfinite(value))
-    throw core::InputError(where, "must be a finite number, got " + std::to_string(value));
-}
-
-void requirePositiveArg(const std::string& where, double value) {
-  requireFiniteArg(where, value);
-  if (!(value > 0.0)) throw core::InputError(where, "must be > 0, got " + std::to_string(value));
-}
 
 }  // namespace
 
 Complex rayleighSommerfeld2D(const std::vector<std::pair<double, double>>& openings_m, double X_m, double z_m,
                              double wavelength_m, double sin_theta_i) {
-  requireFiniteArg("rayleighSommerfeld2D: X_m", X_m);
-  requirePositiveArg("rayleighSommerfeld2D: z_m", z_m);
-  requirePositiveArg("rayleighSommerfeld2D: wavelength_m", wavelength_m);
-  requireFiniteArg("rayleighSommerfeld2D: sin_theta_i", sin_theta_i);
+  core::requireFinite("rayleighSommerfeld2D: X_m", X_m);
+  core::requirePositive("rayleighSommerfeld2D: z_m", z_m);
+  core::requirePositive("rayleighSommerfeld2D: wavelength_m", wavelength_m);
+  core::requireFinite("rayleighSommerfeld2D: sin_theta_i", sin_theta_i);
   if (std::abs(sin_theta_i) > 1.0)
     throw core::InputError("rayleighSommerfeld2D: sin_theta_i",
                            "must lie in [-1, 1], got " + std::to_string(sin_theta_i));
@@ -95,8 +86,8 @@ Complex rayleighSommerfeld2D(const std::vector<std::pair<double, double>>& openi
   Complex field(0.0, 0.0);
   long panels = 0;
   for (const auto& [begin_m, end_m] : openings_m) {
-    requireFiniteArg("rayleighSommerfeld2D: opening begin", begin_m);
-    requireFiniteArg("rayleighSommerfeld2D: opening end", end_m);
+    core::requireFinite("rayleighSommerfeld2D: opening begin", begin_m);
+    core::requireFinite("rayleighSommerfeld2D: opening end", end_m);
     if (end_m < begin_m)
       throw core::InputError(
           "rayleighSommerfeld2D: openings_m",

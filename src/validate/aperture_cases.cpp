@@ -47,6 +47,33 @@ CaseResult timed(const std::string& name, F&& run) {
   return r;
 }
 
+// The part the single-slit cases share: width, wavelength and distance checked, the slit built, the
+// set-up filled. `screen_default(a, λ, z)` is the screen half-width when --screen is 0.
+struct SlitCase {
+  double a = 0, lambda = 0, z = 0;
+  std::shared_ptr<wbsdf::Openings> slit;
+  ApertureSetup setup;
+};
+
+template <class ScreenDefault>
+SlitCase slitCase(const Params& p, const RunOptions& o, ScreenDefault screen_default) {
+  SlitCase c;
+  c.a = one(p, "width");
+  c.lambda = one(p, "wavelength");
+  c.z = one(p, "distance");
+  core::requirePositive("--width", c.a);
+  core::requirePositive("--wavelength", c.lambda);
+  core::requirePositive("--distance", c.z);
+  c.slit = wbsdf::Openings::slit(c.a);
+  c.setup.along_x = c.slit.get();
+  c.setup.wavelength_m = c.lambda;
+  c.setup.distance_m = c.z;
+  c.setup.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : screen_default(c.a, c.lambda, c.z);
+  c.setup.bins_x = binsOf(p, "bins");
+  c.setup.angle_impact = modelIsAngleImpact(o);
+  return c;
+}
+
 }  // namespace
 
 CaseInfo slitFraunhoferCase() {
@@ -59,23 +86,13 @@ CaseInfo slitFraunhoferCase() {
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fraunhofer", [&](CaseResult& r) {
-      const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
-      core::requirePositive("--width", a);
-      core::requirePositive("--wavelength", lambda);
-      core::requirePositive("--distance", z);
-      const auto slit = wbsdf::Openings::slit(a);
-      ApertureSetup s;
-      s.along_x = slit.get();
-      s.wavelength_m = lambda;
-      s.distance_m = z;
-      s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 3.0 * lambda * z / a;
-      s.bins_x = binsOf(p, "bins");
-      s.reference = [=](double x, double) {
+      SlitCase sc = slitCase(p, o, [](double a, double lambda, double z) { return 3.0 * lambda * z / a; });
+      const double a = sc.a, lambda = sc.lambda, z = sc.z;
+      sc.setup.reference = [=](double x, double) {
         return reference::farFieldScreenIntensity2D(x, z, lambda,
                                                     reference::slitFraunhofer(reference::screenU(x, z, lambda), a));
       };
-      s.angle_impact = modelIsAngleImpact(o);
-      runAperture(s, o, raysOf(o, 32'000'000), r);
+      runAperture(sc.setup, o, raysOf(o, 32'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
   };
@@ -166,20 +183,10 @@ CaseInfo slitFresnelCase() {
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fresnel", [&](CaseResult& r) {
-      const double a = one(p, "width"), lambda = one(p, "wavelength"), z = one(p, "distance");
-      core::requirePositive("--width", a);
-      core::requirePositive("--wavelength", lambda);
-      core::requirePositive("--distance", z);
-      const auto slit = wbsdf::Openings::slit(a);
-      ApertureSetup s;
-      s.along_x = slit.get();
-      s.wavelength_m = lambda;
-      s.distance_m = z;
-      s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : 1.5 * a;
-      s.bins_x = binsOf(p, "bins");
-      s.reference = [=](double x, double) { return reference::fresnelSlitIntensity(x, a, lambda, z); };
-      s.angle_impact = modelIsAngleImpact(o);
-      runAperture(s, o, raysOf(o, 16'000'000), r);
+      SlitCase sc = slitCase(p, o, [](double a, double, double) { return 1.5 * a; });
+      const double a = sc.a, lambda = sc.lambda, z = sc.z;
+      sc.setup.reference = [=](double x, double) { return reference::fresnelSlitIntensity(x, a, lambda, z); };
+      runAperture(sc.setup, o, raysOf(o, 16'000'000), r);
       r.extra["fresnel_number"] = a * a / (lambda * z);
     });
   };
