@@ -28,9 +28,18 @@ namespace {
 // The hot loop works on plain doubles: a few dot products per event, with no temporaries.
 inline double dot(const double* a, const Vec3& b) { return a[0] * b.x() + a[1] * b.y() + a[2] * b.z(); }
 
+// Quasi-random dimensions of a path (core::ChunkSampler): each source coordinate is paired with the
+// direction drawn from it, x with u' and y with v'. The pair (x, u') decides the 2D problems, so it gets
+// the R2 generators (1/ρ, 1/ρ², ρ the plastic number), the best-known 2D Kronecker lattice; y, v' and λ
+// get φ − 1, √2 − 1 and √3 − 1, independent of those over the rationals so the 5D set stays uniform.
+constexpr int kDimX = 0, kDimU = 1, kDimY = 2, kDimV = 3, kDimLambda = 4, kDimFree = 5;
+constexpr double kGenerators[kDimFree] = {0.7548776662466927, 0.5698402909980532, 0.6180339887498949,
+                                          0.4142135623730950, 0.7320508075688772};
+
 struct PathState {
   double o[3], d[3];    ///< origin and unit direction (world, metres), double precision
   double energy;        ///< signed energy
+  double lambda;        ///< wavelength (m) this ray carries
   double tnear;
   std::uint64_t index;  ///< ray index within its chunk (its quasi-random point)
   int dim;              ///< next uniform dimension of this ray
@@ -38,13 +47,19 @@ struct PathState {
 
 // Scatters a ray at an occluder (paper eq. 8–10: u_o = u_i + u', the sign of W in the energy).
 // `p` is the hit point in double. Returns false when the ray ends there.
-bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const double* p, double wavelength,
+bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const double* p,
                        core::ChunkSampler& sampler, PathState& s, TraceResult& acc) {
+  const double wavelength = s.lambda;
   const geometry::Frame& f = obj.frame;
   const double x = dot(p, f.ex) - obj.origin_x, y = dot(p, f.ey) - obj.origin_y;
   const double alpha = dot(s.d, f.ex), beta = dot(s.d, f.ey), gamma = dot(s.d, f.n);
-  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, sampler.next(s.index, s.dim));
-  const double xi_y = sampler.next(s.index, s.dim);  // drawn even when unused: dimensions stay aligned
+  // The first scattering uses the quasi-random dimensions paired with the source position (kDimU,
+  // kDimV); later ones draw fresh uniforms.
+  const bool first = s.dim == kDimFree;
+  const double xi_x = first ? sampler.at(s.index, kDimU) : sampler.next(s.index, s.dim);
+  const double xi_y = first ? sampler.at(s.index, kDimV) : sampler.next(s.index, s.dim);
+  if (first) s.dim = kDimFree + 1;
+  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, xi_x);
   double weight = sx.weight;
   double v_shift = 0.0;
   if (occ.table_y && weight != 0.0) {
@@ -85,8 +100,8 @@ void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceRes
 }
 
 // What happens to a ray at its next hit; returns whether it goes on.
-bool followHit(const Scene& scene, int object, float t_embree, double lambda, core::ChunkSampler& sampler,
-               PathState& s, TraceResult& acc) {
+bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSampler& sampler, PathState& s,
+               TraceResult& acc) {
   ++acc.segments;
   if (object < 0) {
     tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
@@ -114,7 +129,7 @@ bool followHit(const Scene& scene, int object, float t_embree, double lambda, co
       acc.on_absorbers += s.energy;
       return false;
     case ObjectKind::Occluder:
-      return scatterAtOccluder(scene.occluders()[obj.index], obj, p, lambda, sampler, s, acc);
+      return scatterAtOccluder(scene.occluders()[obj.index], obj, p, sampler, s, acc);
   }
   return false;
 }
@@ -123,8 +138,12 @@ bool followHit(const Scene& scene, int object, float t_embree, double lambda, co
 
 TraceResult trace(const Scene& scene, const CollimatedSource& source, const TraceOptions& options) {
   core::requirePositive("wavelength", source.wavelength_m);
+  core::requireFinite("maximum wavelength", source.wavelength_max_m);
   if (options.rays == 0) throw core::InputError("--rays", "must be > 0");
-  const double lambda = source.wavelength_m;
+  // Frequencies uniform between c/λ_max and c/λ_min, i.e. 1/λ uniform.
+  const double inv_lambda_hi = 1.0 / source.wavelength_m;
+  const double inv_lambda_lo =
+      source.wavelength_max_m > source.wavelength_m ? 1.0 / source.wavelength_max_m : inv_lambda_hi;
   const Vec3 dir0 = source.dir.normalized();
   const double ray_energy = source.power() / static_cast<double>(options.rays);
   const geometry::Intersector& isect = scene.intersector();
@@ -138,8 +157,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
   // Rays travel in packets (Embree traces a packet at once); each keeps its own state.
   constexpr int kPacket = geometry::RayPacket::kSize;
   auto body = [&](TraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
-    // Quasi-random dimensions: source x, source y, then the first occluder's u' and v'.
-    core::ChunkSampler sampler(rng, 4, options.qmc);
+    core::ChunkSampler sampler(rng, kGenerators, kDimFree, options.qmc);
     PathState s[kPacket];
     geometry::RayPacket packet;
     geometry::HitPacket hits;
@@ -151,9 +169,11 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
         ++alive;
         PathState& st = s[k];
         st.index = first + k - begin;
-        st.dim = 0;
-        const double sx = (2.0 * sampler.next(st.index, st.dim) - 1.0) * source.half_x_m;
-        const double sy = (2.0 * sampler.next(st.index, st.dim) - 1.0) * source.half_y_m;
+        st.dim = kDimFree;
+        const double sx = (2.0 * sampler.at(st.index, kDimX) - 1.0) * source.half_x_m;
+        const double sy = (2.0 * sampler.at(st.index, kDimY) - 1.0) * source.half_y_m;
+        const double xi_lambda = sampler.at(st.index, kDimLambda);
+        st.lambda = 1.0 / (inv_lambda_lo + xi_lambda * (inv_lambda_hi - inv_lambda_lo));
         for (int c = 0; c < 3; ++c) {
           st.o[c] = source.frame.origin[c] + sx * source.frame.ex[c] + sy * source.frame.ey[c];
           st.d[c] = dir0[c];
@@ -181,7 +201,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
         isect.intersectPacket(packet, hits);
         for (int k = 0; k < kPacket; ++k) {
           if (!packet.active[k]) continue;
-          if (!followHit(scene, hits.object[k], hits.t[k], lambda, sampler, s[k], acc)) {
+          if (!followHit(scene, hits.object[k], hits.t[k], sampler, s[k], acc)) {
             packet.active[k] = 0;
             --alive;
           }

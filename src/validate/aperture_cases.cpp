@@ -106,7 +106,8 @@ CaseInfo doubleSlitCase() {
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {10.0}, "slits to screen (m)"},
               {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero"},
-              {"bins", {201}, "screen bins"}};
+              {"bins", {201}, "screen bins"},
+              {"bandwidth", {0.0}, "relative bandwidth: frequencies f0·(1 ± b/2), flat; 0 = monochromatic"}};
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("double-slit", [&](CaseResult& r) {
@@ -123,10 +124,25 @@ CaseInfo doubleSlitCase() {
       s.distance_m = z;
       s.screen_half_x_m = one(p, "screen") > 0 ? one(p, "screen") : lambda * z / a;
       s.bins_x = binsOf(p, "bins");
-      s.reference = [=](double x, double) {
-        const double u = reference::screenU(x, z, lambda);
-        return reference::farFieldScreenIntensity2D(x, z, lambda, reference::doubleSlitFraunhofer(u, a, d));
+      const double band = one(p, "bandwidth");
+      if (!(band >= 0.0 && band < 2.0)) throw core::InputError("--bandwidth", "must lie in [0, 2)");
+      auto mono = [=](double x, double lam) {
+        return reference::farFieldScreenIntensity2D(x, z, lam,
+                                                    reference::doubleSlitFraunhofer(reference::screenU(x, z, lam), a, d));
       };
+      if (band > 0.0) {
+        // Frequencies f0(1 ± b/2), flat: the pattern averaged over 1/λ (16-point Gauss–Legendre).
+        s.wavelength_m = lambda / (1.0 + 0.5 * band);
+        s.wavelength_max_m = lambda / (1.0 - 0.5 * band);
+        s.reference = [=](double x, double) {
+          const auto& gl = core::gaussLegendre(16);
+          double sum = 0.0;
+          for (int i = 0; i < 16; ++i) sum += 0.5 * gl.weights[i] * mono(x, lambda / (1.0 + 0.5 * band * gl.nodes[i]));
+          return sum;
+        };
+      } else {
+        s.reference = [=](double x, double) { return mono(x, lambda); };
+      }
       s.angle_impact = modelIsAngleImpact(o);
       runAperture(s, o, raysOf(o, 32'000'000), r);
     });

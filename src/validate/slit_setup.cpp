@@ -92,6 +92,7 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
   src.half_x_m = 0.5 * (x1 - x0);
   src.half_y_m = 0.5 * (y1 - y0);
   src.wavelength_m = s.wavelength_m;
+  src.wavelength_max_m = s.wavelength_max_m;
   transport::TraceOptions topt;
   topt.rays = rays;
   topt.seed = options.seed;

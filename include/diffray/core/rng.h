@@ -36,9 +36,12 @@ class ChunkSampler {
  public:
   static constexpr int kMaxDims = 8;
   ChunkSampler(Rng& rng, int dims, bool qmc);
+  /// With explicit Kronecker generators alpha[0..dims) (irrationals, independent over the rationals).
+  ChunkSampler(Rng& rng, const double* alpha, int dims, bool qmc);
   /// Uniform number `dim` of ray `index` (0-based within the chunk); the caller advances `dim`.
-  double next(std::uint64_t index, int& dim) {
-    const int d = dim++;
+  double next(std::uint64_t index, int& dim) { return at(index, dim++); }
+  /// Uniform number `d` of ray `index`: quasi-random for d < dims, from the chunk's Rng otherwise.
+  double at(std::uint64_t index, int d) {
     if (!qmc_ || d >= dims_) return rng_.uniform();
     const double v = shift_[d] + static_cast<double>(index + 1) * alpha_[d];
     return v - static_cast<double>(static_cast<std::int64_t>(v));  // v ≥ 0: truncation is floor

@@ -29,12 +29,16 @@ struct Absorber {
 };
 
 /// A collimated (plane-wave) source: rays start uniformly on the window rectangle with direction `dir`.
-/// Power = intensity·area·|dir·n| (W when intensity is in W/m²).
+/// Power = intensity·area·|dir·n| (W when intensity is in W/m²). Monochromatic at wavelength_m, or, when
+/// wavelength_max_m > wavelength_m, a flat spectrum in frequency between c/wavelength_max_m and
+/// c/wavelength_m: each ray carries one wavelength drawn from it, so fringes average over the band as
+/// a band filter would (design.md §2).
 struct CollimatedSource {
   geometry::Frame frame;
   double half_x_m = 1.0, half_y_m = 1.0;
   core::Vec3 dir{0, 0, 1};
   double wavelength_m = 0.0;
+  double wavelength_max_m = 0.0;  ///< > wavelength_m: a band (see above); otherwise monochromatic
   double intensity = 1.0;
   double power() const;
 };

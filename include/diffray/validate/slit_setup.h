@@ -17,6 +17,7 @@ struct ApertureSetup {
   const wbsdf::Microstructure* along_x = nullptr;
   const wbsdf::Microstructure* along_y = nullptr;  ///< null: a 2D problem, uniform along y
   double wavelength_m = 0;
+  double wavelength_max_m = 0;  ///< > wavelength_m: a band, flat in frequency (transport::CollimatedSource)
   double distance_m = 0;       ///< occluder to screen
   double screen_half_x_m = 0, screen_half_y_m = 0;
   int bins_x = 1, bins_y = 1;
