@@ -90,9 +90,11 @@ TEST(StatValidate, GratingOrdersCarryBesselEfficiencies) {
 }
 
 TEST(StatValidate, DoorAgreesWithRayleighSommerfeldWithinDocumentedBias) {
-  // Measured with 16M rays per frequency: 1.2–1.4 % of peak at the shadow boundaries (README).
+  // Measured with 16M rays per frequency (noise σ ≤ 0.16 % of peak): 0.87, 0.88, 1.11, 1.10 % of peak at
+  // 125, 250, 500, 1000 Hz, at the shadow boundaries (README, "The door"). The allowance is that bias,
+  // 1.2 %, on top of the 5σ noise bound.
   const auto r = runCase("door-rs", 2'000'000, {{"freq", {250, 1000}}});
-  EXPECT_LE(worstRatio(r, 0.015), 1.0);
+  EXPECT_LE(worstRatio(r, 0.012), 1.0);
 }
 
 TEST(StatValidate, SameSeedSameResult) {
