@@ -95,6 +95,7 @@ bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const d
 // Deposits the ray's energy in every sphere its segment [tnear, t_end) passes through.
 void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
   const auto& spheres = scene.spheres();
+  if (spheres.empty()) return;
   for (std::size_t i = 0; i < spheres.size(); ++i)
     if (spheres[i].crossedBy(s.o, s.d, s.tnear, t_end)) acc.spheres[i].add(0, s.energy);
 }
@@ -172,8 +173,9 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
         st.dim = kDimFree;
         const double sx = (2.0 * sampler.at(st.index, kDimX) - 1.0) * source.half_x_m;
         const double sy = (2.0 * sampler.at(st.index, kDimY) - 1.0) * source.half_y_m;
-        const double xi_lambda = sampler.at(st.index, kDimLambda);
-        st.lambda = 1.0 / (inv_lambda_lo + xi_lambda * (inv_lambda_hi - inv_lambda_lo));
+        st.lambda = inv_lambda_lo == inv_lambda_hi
+                        ? source.wavelength_m
+                        : 1.0 / (inv_lambda_lo + sampler.at(st.index, kDimLambda) * (inv_lambda_hi - inv_lambda_lo));
         for (int c = 0; c < 3; ++c) {
           st.o[c] = source.frame.origin[c] + sx * source.frame.ex[c] + sy * source.frame.ey[c];
           st.d[c] = dir0[c];
