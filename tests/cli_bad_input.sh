@@ -40,6 +40,16 @@ expect_error "too few bins"           validate slit-fraunhofer --bins 2 --rays 1
 expect_error "zero rays"              validate slit-fraunhofer --rays 0 "$csv"
 expect_error "unknown sampler"        validate slit-fraunhofer --sampler magic "$csv"
 expect_error "unwritable CSV"         validate grating-orders --rays 20000 --csv "$tmp/no/such/dir/out.csv"
+expect_error "unwritable plot"         validate grating-orders --rays 20000 --plot "$tmp/no/such/dir/out.png"
+expect_error "zero-width wdf slit"    wdf slit --width 0
+expect_error "unknown wdf kind"       wdf blob
+expect_error "profile without file"   wdf profile
+expect_error "missing profile file"   wdf profile --profile "$tmp/none.csv"
+printf 'x,a,phi\n0,1,0\n0,1,0\n' >"$tmp/dup.csv"
+expect_error "x not increasing"       wdf profile --profile "$tmp/dup.csv"
+printf 'x,a,phi\n0,1,0\n1e-3,nan,0\n' >"$tmp/nan.csv"
+expect_error "NaN in a profile"       wdf profile --profile "$tmp/nan.csv"
+expect_error "wdf CSV to nowhere"     wdf slit --csv "$tmp/no/such/dir/w.csv"
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 
@@ -47,6 +57,13 @@ expect_error "unknown subcommand"     frobnicate
 "$bin" validate slit-fraunhofer --rays 20000 --bins 11 --csv "$tmp/good.csv" >/dev/null 2>&1
 if [ "$(wc -l <"$tmp/good.csv" 2>/dev/null)" = "12" ]; then passes=$((passes + 1)); else
   echo "FAIL: good run did not write 12 CSV lines"; fails=$((fails + 1)); fi
+
+# With gnuplot present, --plot writes a PNG (checked by its signature).
+if command -v gnuplot >/dev/null 2>&1; then
+  "$bin" validate slit-fraunhofer --rays 20000 --bins 11 --plot "$tmp/p.png" >/dev/null 2>&1
+  if [ "$(head -c 8 "$tmp/p.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; then
+    passes=$((passes + 1)); else echo "FAIL: --plot did not write a PNG"; fails=$((fails + 1)); fi
+fi
 
 echo "cli_bad_input: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

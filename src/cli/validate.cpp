@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "diffray/cli/commands.h"
+#include "diffray/cli/plot.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -25,6 +26,7 @@ struct ValidateOptions {
   std::string case_name;
   std::uint64_t rays = 0;
   std::string csv;
+  std::string plot;
   std::string sampler = "qmc";
   std::string model = "wigner";
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
@@ -95,6 +97,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
   sub->add_option("--csv", opts->csv, "write one row per receiver bin to this CSV file");
+  sub->add_option("--plot", opts->plot, "draw traced vs reference into this PNG (needs gnuplot)");
   sub->add_option("--sampler", opts->sampler, "qmc: randomised quasi-Monte Carlo; mc: plain Monte Carlo")
       ->check(CLI::IsMember({"qmc", "mc"}))
       ->capture_default_str();
@@ -164,6 +167,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       if (common.json) std::cout << toJson(results.back()).dump() << std::endl;
     }
     if (!opts->csv.empty()) writeCsv(opts->csv, results);
+    if (!opts->plot.empty()) writeValidationPlot(opts->plot, results);
     if (!common.json) printTable(results);
     return all_passed ? 0 : 1;
   };

@@ -1,0 +1,104 @@
+#include "diffray/cli/plot.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "diffray/core/error.h"
+
+namespace diffray::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rows worth drawing: all of a 1D screen; the centre row of a 2D one (the y closest to 0).
+std::vector<const validate::Row*> plottedRows(const validate::CaseResult& r) {
+  double y_min = INFINITY;
+  for (const auto& row : r.rows) y_min = std::min(y_min, std::abs(row.y_m));
+  std::vector<const validate::Row*> out;
+  for (const auto& row : r.rows)
+    if (std::abs(std::abs(row.y_m) - y_min) < 1e-15 && row.y_m <= 0) out.push_back(&row);
+  return out;
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+  const fs::path dir = fs::temp_directory_path() / ("diffray-plot-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string tmp_png = png_path + ".tmp." + std::to_string(::getpid());
+  std::ostringstream script;
+  const int cols = results.size() > 1 ? 2 : 1;
+  const int rows = static_cast<int>((results.size() + cols - 1) / cols);
+  script << "set terminal pngcairo size " << 640 * cols << "," << 400 * rows << " font 'sans,9'\n"
+         << "set output " << quoted(tmp_png) << "\n"
+         << "set multiplot layout " << rows << "," << cols << "\n"
+         << "set key top right font 'sans,8'\nset grid\n";
+  for (std::size_t c = 0; c < results.size(); ++c) {
+    const auto& r = results[c];
+    // One data block per label (frequency), blocks separated by two blank lines for gnuplot's `index`.
+    std::map<std::string, std::vector<const validate::Row*>> by_label;
+    for (const auto* row : plottedRows(r)) by_label[row->label].push_back(row);
+    const fs::path data = dir / ("case" + std::to_string(c) + ".dat");
+    std::ofstream out(data);
+    for (const auto& [label, rows_of] : by_label) {
+      for (const auto* row : rows_of) out << row->x_m << ' ' << row->traced << ' ' << row->reference << '\n';
+      out << "\n\n";
+    }
+    out.close();
+    std::ostringstream title;
+    title << r.name << ": max |error| " << std::round(1000.0 * r.max_abs_error_rel_peak * 100.0) / 1000.0
+          << " % of peak" << (r.passed ? "" : " (target missed)");
+    const bool orders = r.name == "grating-orders";
+    script << "set title " << quoted(title.str()) << "\n"
+           << "set xlabel " << quoted(orders ? "sin(theta) of the order" : "screen position (m)") << "\n"
+           << "set ylabel " << quoted(orders ? "energy fraction" : "intensity / incident") << "\n"
+           << "plot ";
+    int block = 0;
+    for (const auto& [label, rows_of] : by_label) {
+      const std::string name = label.empty() ? std::string() : label + " ";
+      script << (block ? ", " : "") << quoted(data.string()) << " index " << block << " using 1:3 with "
+             << (orders ? "impulses" : "lines") << " lw 2 title " << quoted(name + "reference") << ", "
+             << quoted(data.string()) << " index " << block << " using 1:2 with points pt 7 ps 0.5 title "
+             << quoted(name + "traced");
+      ++block;
+    }
+    script << "\n";
+  }
+  script << "unset multiplot\n";
+  const fs::path script_path = dir / "plot.gp";
+  std::ofstream(script_path) << script.str();
+  const std::string cmd = "gnuplot " + quoted(script_path.string()) + " 2>" + quoted((dir / "err.txt").string());
+  const int status = std::system(cmd.c_str());
+  std::string err;
+  {
+    std::ifstream e(dir / "err.txt");
+    std::getline(e, err);
+  }
+  fs::remove_all(dir);
+  if (status != 0 || !fs::exists(tmp_png)) {
+    std::remove(tmp_png.c_str());
+    throw core::InputError("--plot", "gnuplot failed" + (err.empty() ? std::string() : ": " + err));
+  }
+  if (std::rename(tmp_png.c_str(), png_path.c_str()) != 0) {
+    std::remove(tmp_png.c_str());
+    throw core::InputError(png_path, "cannot write the plot");
+  }
+}
+
+}  // namespace diffray::cli
