@@ -29,12 +29,13 @@ std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const wbsdf::Microstructure& m
   // a bin and of the smallest feature.
   const double bin_m = 2.0 * screen_half / bins;
   const double dx = std::min(bin_m, m.featureSize()) / 8.0;
-  o.rows_per_feature = std::max(8, std::min(s.max_rows_per_feature, static_cast<int>(std::ceil(m.featureSize() / dx))));
+  o.rows_per_feature =
+      std::max(8, std::min(s.max_rows_per_feature, core::checkedCount("table rows", m.featureSize() / dx, 1e9)));
   // A u-cell of width du blurs landing positions by up to λ·z·du: keep that under 1/8 of a bin.
   const double bin = 2.0 * screen_half / bins;
   const double du = bin / (8.0 * s.wavelength_m * s.distance_m);
-  o.cells_per_coherence = std::max(o.cells_per_coherence,
-                                   static_cast<int>(std::ceil(1.0 / (du * m.coherenceLength()))));
+  o.cells_per_coherence =
+      std::max(o.cells_per_coherence, core::checkedCount("table columns", 1.0 / (du * m.coherenceLength()), 1e9));
   o.u_half_range_per_m = usefulShiftRange(s.wavelength_m, screen_half, 0.5 * (hi - lo), s.distance_m);
   return wbsdf::WbsdfTable::build(m, o);
 }
@@ -60,9 +61,11 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
     // Same resolution rules as the Wigner tables: cells move a ray by at most 1/8 of a bin.
     const double bin_m = 2.0 * s.screen_half_x_m / s.bins_x;
     ai.margin_m = 4.0 * s.wavelength_m;
-    ai.nx = static_cast<int>(std::ceil((hi - lo + 2.0 * ai.margin_m) / (std::min(bin_m, hi - lo) / 8.0)));
+    ai.nx = core::checkedCount("angle-impact table rows",
+                               (hi - lo + 2.0 * ai.margin_m) / (std::min(bin_m, hi - lo) / 8.0), 1e7);
     ai.u_half_range_per_m = usefulShiftRange(s.wavelength_m, s.screen_half_x_m, 0.5 * (hi - lo), s.distance_m);
-    ai.nu = static_cast<int>(std::ceil(2.0 * ai.u_half_range_per_m / (bin_m / (8.0 * s.wavelength_m * s.distance_m))));
+    ai.nu = core::checkedCount("angle-impact table columns",
+                               2.0 * ai.u_half_range_per_m / (bin_m / (8.0 * s.wavelength_m * s.distance_m)), 1e7);
     occ.table_x = wbsdf::angleImpactTable(
         [openings](double u) { return wbsdf::openingsSpectrum(*openings, u); }, ai);
   } else {

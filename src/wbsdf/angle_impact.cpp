@@ -78,6 +78,7 @@ std::shared_ptr<const WbsdfTable> angleImpactTable(const std::function<Cx(double
   core::requirePositive("wavelength", lambda);
   if (!(o.x_hi_m > o.x_lo_m)) throw core::InputError("aperture", "needs x_hi > x_lo");
   if (o.nu < 2 || o.nx < 1) throw core::InputError("angle-impact table", "needs nu >= 2 and nx >= 1");
+  core::checkedCount("angle-impact table cells", static_cast<double>(o.nu) * o.nx, static_cast<double>(o.max_cells));
   const double margin = o.margin_m > 0 ? o.margin_m : 4.0 * lambda;
   TableLayout L;
   L.x0_m = o.x_lo_m - margin;

@@ -52,7 +52,7 @@ std::shared_ptr<Openings> Openings::slit(double width_m, double centre_m) {
 }
 
 std::shared_ptr<Openings> Openings::slits(int count, double width_m, double spacing_m) {
-  if (count < 1) throw core::InputError("slit count", "must be >= 1");
+  if (count < 1 || count > 64) throw core::InputError("slit count", "must be from 1 to 64");
   core::requirePositive("slit width", width_m);
   if (count > 1) core::requirePositive("slit spacing", spacing_m);
   if (count > 1 && spacing_m <= width_m)
@@ -107,8 +107,9 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
   DIFFRAY_CHECK(x2 > x1 && u2 > u1);
   // Split [x1, x2] at breakpoints so that each piece is smooth (see the comment above).
   std::vector<double> cuts{x1};
-  for (double b : breakpoints_)
-    if (b > x1 && b < x2) cuts.push_back(b);
+  for (auto it = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1);
+       it != breakpoints_.end() && *it < x2; ++it)
+    cuts.push_back(*it);
   cuts.push_back(x2);
   double total = 0.0;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -116,6 +117,9 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
     const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
     // Oscillation frequency in u is at most the lag bound (plus the sinc from the x-average).
     const double cycles = (u2 - u1) * (lagBound(mid) + 2.0 * width);
+    if (!(cycles < 1e4))
+      throw core::InputError("WBSDF table", "a cell spans more than 10^4 oscillations of W; narrow the u range "
+                                            "(--u-range) or the wavelength-to-size ratio");
     const int panels = 1 + static_cast<int>(cycles);
     total += width * core::integrate([&](double u) { return wdf(mid, u) * sinc(2.0 * u * width); }, u1, u2,
                                      panels, 6);
@@ -147,6 +151,8 @@ double Openings::coherenceLength() const {
 PhaseGrating::PhaseGrating(double period_m, double modulation_m) : period_(period_m), modulation_(modulation_m) {
   core::requirePositive("grating period", period_m);
   core::requireFinite("grating modulation", modulation_m);
+  if (std::abs(modulation_m) > 1000.0)
+    throw core::InputError("grating modulation", "must lie within ±1000 (phase amplitude m/2 ≤ 500 rad)");
   const double half = 0.5 * std::abs(modulation_m);
   q_max_ = static_cast<int>(std::ceil(half + 6.0 * std::cbrt(half + 1.0) + 8.0));
   bessel_.resize(2 * q_max_ + 1);

@@ -46,19 +46,21 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   // least 8 per wavelength.
   double dx = feature / o.rows_per_feature;
   if (L.open_beyond) dx = std::min(dx, o.wavelength_m / 8.0);
-  L.nx = std::max(1, static_cast<int>(std::ceil((x_hi - x_lo) / dx)));
+  const double max_cells = static_cast<double>(o.max_cells);
+  L.nx = core::checkedCount("WBSDF table rows", (x_hi - x_lo) / dx, max_cells);
   L.dx_m = (x_hi - x_lo) / L.nx;
 
   const double half_range = o.u_half_range_per_m > 0 ? o.u_half_range_per_m : 2.0 / o.wavelength_m;
   if (m.lineSpacing() > 0) {
     L.line_spectrum = true;
     L.du_per_m = m.lineSpacing();
-    const int n_half = static_cast<int>(std::floor(half_range / L.du_per_m));
+    const int n_half = core::checkedCount("WBSDF table lines", std::floor(half_range / L.du_per_m), max_cells);
     L.nu = 2 * n_half + 1;
     L.u0_per_m = -(n_half + 0.5) * L.du_per_m;  // cells centred on the lines
   } else {
-    L.nu = std::max(2, static_cast<int>(std::ceil(2.0 * half_range * o.cells_per_coherence *
-                                                  m.coherenceLength())));
+    const double wanted = 2.0 * half_range * o.cells_per_coherence * m.coherenceLength();
+    L.nu = std::max(2, core::checkedCount("WBSDF table columns",
+                                          o.coarsen_to_fit ? std::min(wanted, max_cells) : wanted, max_cells));
     L.nu += L.nu % 2;  // symmetric about u' = 0
     if (o.coarsen_to_fit && static_cast<std::size_t>(L.nx) * L.nu > o.max_cells) {
       L.nu = std::max(2, static_cast<int>(o.max_cells / static_cast<std::size_t>(L.nx)));

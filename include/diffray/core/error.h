@@ -28,6 +28,9 @@ class InternalError : public std::logic_error {
 void requirePositive(const std::string& where, double value);
 /// Throws InputError unless `value` is finite.
 void requireFinite(const std::string& where, double value);
+/// ceil(count) as an int, for sizes computed in double (table rows, cells). Throws InputError naming
+/// `where` unless it is finite and at most `limit`: never a silent overflow.
+int checkedCount(const std::string& where, double count, double limit);
 
 }  // namespace diffray::core
 

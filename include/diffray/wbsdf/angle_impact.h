@@ -33,6 +33,7 @@ struct AngleImpactOptions {
   /// (directions that can reach the receivers) save work; what lies outside is left out.
   double u_half_range_per_m = 0.0;
   int nx = 256;                       ///< x-rows over the aperture plus margins
+  std::size_t max_cells = 8'000'000;  ///< refuse (InputError) larger tables: each column costs FFTs
 };
 
 /// Tabulates W̃(x₀, u) for the angular spectrum `spectrum(u)` = T(u) = ∫ t(x) e^{−i2πux} dx.
