@@ -3,10 +3,11 @@
 // with the tracer. Tolerances come from the estimator's own variance: every bin's standard error σ_b is
 // the scatter of its total over independent chunks (receiver/screen.h), and we require
 //     |traced_b − reference_b| ≤ 5·σ_b + floor
-// for every bin. With ~100–1700 bins and σ_b estimated from ≥ 120 chunks (Student t, 119 dof), the chance
-// that an unbiased estimator trips this is about 2·P(t > 5)·bins ≈ 1e-3 (Bonferroni). The floor is
-// 1e-3 of the peak: the tables place each ray within 1/8 of a bin of where the exact W would (x and u
-// cell widths, validate/slit_setup.cpp), a blur whose effect on a bin average is below that.
+// for every bin. With at most 441 bins per test and σ_b estimated from ≥ 61 chunks (Student t, 60 dof),
+// the chance that an unbiased estimator trips this is at most 2·P(t₆₀ > 5)·441 ≈ 3e-3 (Bonferroni). The
+// floor is 1e-3 of the peak: near the axis the tables place each ray within 1/8 of a bin of where the
+// exact W would (x and u cell widths, validate/slit_setup.cpp), a blur whose effect on a bin average is
+// below that.
 // door-rs additionally carries the measured model bias of first-order Wigner transport in the
 // non-paraxial near field (README, "Validation"): it is checked against that documented level, which is
 // above the 1 % target.
@@ -85,15 +86,18 @@ TEST(StatValidate, FresnelSlitAgreesWithFresnelIntegrals) {
 TEST(StatValidate, GratingOrdersCarryBesselEfficiencies) {
   const auto r = runCase("grating-orders", 1'000'000);
   EXPECT_LE(worstRatio(r), 1.0);
-  // Half-order lines cancel over whole periods (mid-air terms average out): within 5σ of the total.
-  EXPECT_LE(std::abs(r.extra.at("half_order_energy")), 5.0 * r.max_std_error_rel_peak + 1e-3);
+  // Half-order lines cancel over whole periods (mid-air terms average out): within 5σ of their own total,
+  // σ from the chunk scatter of the half-order bins.
+  EXPECT_LE(std::abs(r.extra.at("half_order_energy")), 5.0 * r.extra.at("half_order_energy_std_error"));
+  EXPECT_GT(r.extra.at("half_order_energy_std_error"), 0.0);
 }
 
 TEST(StatValidate, DoorAgreesWithRayleighSommerfeldWithinDocumentedBias) {
   // Measured with 16M rays per frequency (noise σ ≤ 0.16 % of peak): 0.87, 0.88, 1.11, 1.10 % of peak at
   // 125, 250, 500, 1000 Hz, at the shadow boundaries (README, "The door"). The allowance is that bias,
   // 1.2 %, on top of the 5σ noise bound.
-  const auto r = runCase("door-rs", 2'000'000, {{"freq", {250, 1000}}});
+  // 8M rays (4M per frequency) keep 5σ near 1 % of peak, so the test is not dominated by noise.
+  const auto r = runCase("door-rs", 8'000'000, {{"freq", {250, 1000}}});
   EXPECT_LE(worstRatio(r, 0.012), 1.0);
 }
 

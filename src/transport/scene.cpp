@@ -39,6 +39,12 @@ int Scene::addSphere(receiver::Sphere s) {
   return static_cast<int>(spheres_.size()) - 1;
 }
 
+void Scene::setFarField(FarField f) {
+  if (f.bins < 1 || !(f.alpha_hi > f.alpha_lo)) throw core::InputError("far field", "needs bins >= 1 and a range");
+  f.ex = f.ex.normalized();
+  far_field_ = f;
+}
+
 int Scene::addAbsorber(Absorber a) {
   absorbers_.push_back(a);
   return addObject(ObjectKind::Absorber, static_cast<int>(absorbers_.size()) - 1, a.frame, a.half_x_m, a.half_y_m);

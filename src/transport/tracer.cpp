@@ -13,6 +13,7 @@ using core::Vec3;
 void TraceResult::merge(const TraceResult& o) {
   for (std::size_t i = 0; i < screens.size(); ++i) screens[i].merge(o.screens[i]);
   for (std::size_t i = 0; i < spheres.size(); ++i) spheres[i].merge(o.spheres[i]);
+  far_field.merge(o.far_field);
   emitted += o.emitted;
   absorbed += o.absorbed;
   evanescent += o.evanescent;
@@ -107,6 +108,11 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
   if (object < 0) {
     tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
     acc.escaped += s.energy;
+    if (const FarField* ff = scene.farField()) {
+      const double alpha = dot(s.d, ff->ex);
+      const double f = (alpha - ff->alpha_lo) / (ff->alpha_hi - ff->alpha_lo);
+      if (f >= 0.0 && f < 1.0) acc.far_field.add(std::min(static_cast<int>(f * ff->bins), ff->bins - 1), s.energy);
+    }
     return false;
   }
   const Scene::ObjectRef& obj = scene.object(object);
@@ -153,6 +159,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
     TraceResult r;
     for (const auto& s : scene.screens()) r.screens.emplace_back(s.bins());
     r.spheres.assign(scene.spheres().size(), receiver::ScreenTally(1));
+    r.far_field = receiver::ScreenTally(scene.farField() ? scene.farField()->bins : 0);
     return r;
   };
   // Rays travel in packets (Embree traces a packet at once); each keeps its own state.
@@ -212,6 +219,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
     }
     for (auto& t : acc.screens) t.closeChunk();
     for (auto& t : acc.spheres) t.closeChunk();
+    acc.far_field.closeChunk();
   };
   auto progress = [&](std::uint64_t n) {
     if (options.on_progress) options.on_progress(n);

@@ -5,6 +5,7 @@
 // a separable WBSDF W(x,y,u,v) = W_x(x,u)·W_y(y,v) (design.md §1); a missing y table means the structure
 // is uniform along y (an infinitely tall slit or door: a 2D problem). Immutable once built; thread-safe.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "diffray/geometry/embree_scene.h"
@@ -43,6 +44,14 @@ struct CollimatedSource {
   double power() const;
 };
 
+/// A far-field receiver: rays that leave the scene are binned by the direction cosine α = dir·ex over
+/// [alpha_lo, alpha_hi) in `bins` bins, whatever their position: the pattern at infinity.
+struct FarField {
+  core::Vec3 ex{1, 0, 0};
+  double alpha_lo = -1.0, alpha_hi = 1.0;
+  int bins = 1;
+};
+
 enum class ObjectKind { Occluder, Screen, Absorber };
 
 class Scene {
@@ -52,6 +61,9 @@ class Scene {
   int addAbsorber(Absorber a);
   /// A transparent listener sphere (not part of the Embree scene: tested analytically per segment).
   int addSphere(receiver::Sphere s);
+  /// Bins the escaping rays by direction (one far-field receiver per scene).
+  void setFarField(FarField f);
+  const FarField* farField() const { return far_field_ ? &*far_field_ : nullptr; }
   /// Builds the Embree scene (brute_force = true: the test back end). Call once after adding objects.
   void build(bool brute_force = false);
 
@@ -75,6 +87,7 @@ class Scene {
   std::vector<Occluder> occluders_;
   std::vector<receiver::Screen> screens_;
   std::vector<receiver::Sphere> spheres_;
+  std::optional<FarField> far_field_;
   std::vector<Absorber> absorbers_;
   std::vector<ObjectRef> objects_;
   geometry::Mesh mesh_;

@@ -30,6 +30,7 @@ struct TraceOptions {
 struct TraceResult {
   std::vector<receiver::ScreenTally> screens;
   std::vector<receiver::ScreenTally> spheres;  ///< one bin each: the energy of every crossing
+  receiver::ScreenTally far_field;              ///< escaping rays by direction (Scene::setFarField)
   double emitted = 0, absorbed = 0, evanescent = 0, escaped = 0, on_absorbers = 0, bounce_limit = 0;
   std::uint64_t rays = 0;
   std::uint64_t segments = 0;  ///< intersection queries made
