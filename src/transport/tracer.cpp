@@ -93,12 +93,15 @@ bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const d
   return true;
 }
 
-// Deposits the ray's energy in every sphere its segment [tnear, t_end) passes through.
+// Deposits the ray's energy in every sphere its segment [tnear, t_end) passes through, weighted by the
+// chord inside (receiver/sphere.h: a track-length estimator).
 void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
   const auto& spheres = scene.spheres();
   if (spheres.empty()) return;
-  for (std::size_t i = 0; i < spheres.size(); ++i)
-    if (spheres[i].crossedBy(s.o, s.d, s.tnear, t_end)) acc.spheres[i].add(0, s.energy);
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const double chord = spheres[i].chordLength(s.o, s.d, s.tnear, t_end);
+    if (chord > 0.0) acc.spheres[i].add(0, s.energy * spheres[i].chordWeight(chord));
+  }
 }
 
 // What happens to a ray at its next hit; returns whether it goes on.
