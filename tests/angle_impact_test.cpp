@@ -2,7 +2,7 @@
 //  * its u-marginal: ∫ W̃(x₀,u) dx₀ = cosθ·|T(u)|², the z-directed power of each plane wave, with
 //    T(u) = a·sinc(au) for a slit (closed form);
 //  * paraxial limit: for a slit many wavelengths wide, near u = 0 the rows approach design.md's Wigner
-//    distribution 2(a − 2|x|)·sinc(2u(a − 2|x|)) averaged over the cell;
+//    distribution 2(a − 2|x|)·sinc(2u(a − 2|x|)) averaged over the cell (wbsdf_fixtures.h quadrature);
 //  * traced through the real transport (door-rs, --model angle-impact), the screen matches the
 //    propagating-field oracle of diffray::reference (angular-spectrum quadrature) within 5 chunk standard
 //    errors per bin plus 1e-3 of the peak (the table's cell blur, as in validate_cases_test.cpp).
@@ -16,6 +16,7 @@
 #include "diffray/validate/case.h"
 #include "diffray/wbsdf/angle_impact.h"
 #include "diffray/wbsdf/microstructure.h"
+#include "wbsdf_fixtures.h"
 
 namespace dw = diffray::wbsdf;
 
@@ -67,7 +68,15 @@ TEST(AngleImpactTable, ApproachesTheWignerDistributionParaxially) {
     const double x1 = L.x0_m + j * L.dx_m;
     for (int k = L.nu / 2 - 20; k < L.nu / 2 + 20; ++k) {
       const double u1 = L.u0_per_m + k * L.du_per_m;
-      const double wigner = slit->cellMass(x1, x1 + L.dx_m, u1, u1 + L.du_per_m);
+      // design.md's closed form, x-averaged and u-integrated by the tests' own Gauss–Legendre rule.
+      const double wigner =
+          diffray::testing::quad(
+              [&](double x) {
+                return diffray::testing::quad([&](double u) { return diffray::testing::rectWdf(x, u, a); }, u1,
+                                              u1 + L.du_per_m, 2);
+              },
+              x1, x1 + L.dx_m, 4) /
+          L.dx_m;
       EXPECT_NEAR(table->mass(j, k), wigner, 2e-3 * 2.0 * a * L.du_per_m) << "row " << j << " col " << k;
     }
   }

@@ -4,6 +4,7 @@
 // sine integral. They share no code with diffray.
 #include <cmath>
 #include <complex>
+#include <random>
 #include <vector>
 
 #include "diffray/wbsdf/table.h"

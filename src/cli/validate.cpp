@@ -1,6 +1,8 @@
 // `diffray validate CASE|all`: runs validation cases and prints a table (or JSON lines), optionally a CSV
 // with one row per receiver bin. Exit code 0 when every case meets its target, 1 when one misses it.
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -149,6 +151,15 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       }
       params.push_back(validate::resolveParams(*c, given));
     }
+    // Outputs are checked before the (possibly long) run: a missing folder or gnuplot fails at once.
+    for (const std::string* out : {&opts->csv, &opts->plot}) {
+      if (out->empty()) continue;
+      const auto parent = std::filesystem::absolute(*out).parent_path();
+      if (!std::filesystem::is_directory(parent))
+        throw core::InputError(*out, "its folder does not exist");
+    }
+    if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     std::vector<validate::CaseResult> results;
     bool all_passed = true;
     for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -166,8 +177,8 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       all_passed = all_passed && results.back().passed;
       if (common.json) std::cout << toJson(results.back()).dump() << std::endl;
     }
+    if (!opts->plot.empty()) writeValidationPlot(opts->plot, results);  // first: the likelier to fail
     if (!opts->csv.empty()) writeCsv(opts->csv, results);
-    if (!opts->plot.empty()) writeValidationPlot(opts->plot, results);
     if (!common.json) printTable(results);
     return all_passed ? 0 : 1;
   };

@@ -2,6 +2,7 @@
 // Each compares the traced screen with an oracle from diffray::reference (design.md §3).
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "diffray/core/error.h"
 #include "diffray/core/math.h"
@@ -81,8 +82,8 @@ CaseInfo slitFraunhoferCase() {
   c.params = {{"width", {100e-6}, "slit width a (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {5.0}, "slit to screen (m); far field needs distance >> a²/λ"},
-              {"screen", {0.0}, "screen half-width (m); 0 = three diffraction zeros"},
-              {"bins", {151}, "screen bins"}};
+              {"screen", {0.0}, "screen half-width (m); 0 = three diffraction zeros", 0.0, true},
+              {"bins", {151}, "screen bins", 3.0, true}};
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fraunhofer", [&](CaseResult& r) {
@@ -105,9 +106,9 @@ CaseInfo doubleSlitCase() {
               {"spacing", {250e-6}, "centre-to-centre spacing d (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {10.0}, "slits to screen (m)"},
-              {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero"},
-              {"bins", {201}, "screen bins"},
-              {"bandwidth", {0.0}, "relative bandwidth: frequencies f0·(1 ± b/2), flat; 0 = monochromatic"}};
+              {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero", 0.0, true},
+              {"bins", {201}, "screen bins", 3.0, true},
+              {"bandwidth", {0.0}, "relative bandwidth: frequencies f0·(1 ± b/2), flat; 0 = monochromatic", 0.0, true, 2.0}};
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("double-slit", [&](CaseResult& r) {
@@ -156,7 +157,7 @@ CaseInfo rectApertureCase() {
               {"height", {150e-6}, "aperture height b along y (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {5.0}, "aperture to screen (m)"},
-              {"bins", {41}, "screen bins along each axis"}};
+              {"bins", {41}, "screen bins along each axis", 3.0, true}};
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("rect-aperture", [&](CaseResult& r) {
       const double a = one(p, "width"), b = one(p, "height"), lambda = one(p, "wavelength"),
@@ -194,8 +195,8 @@ CaseInfo slitFresnelCase() {
   c.params = {{"width", {1e-3}, "slit width a (m)"},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {0.5}, "slit to screen (m); Fresnel number a²/(λz)"},
-              {"screen", {0.0}, "screen half-width (m); 0 = 1.5 a"},
-              {"bins", {151}, "screen bins"}};
+              {"screen", {0.0}, "screen half-width (m); 0 = 1.5 a", 0.0, true},
+              {"bins", {151}, "screen bins", 3.0, true}};
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fresnel", [&](CaseResult& r) {
@@ -216,8 +217,8 @@ CaseInfo doorRsCase() {
               {"freq", {125, 250, 500, 1000}, "frequencies (Hz), comma-separated"},
               {"distance", {2.0}, "opening to the observation line (m)"},
               {"screen", {3.0}, "half-length of the observation line (m)"},
-              {"bins", {121}, "bins along the line"},
-              {"temperature", {20.0}, "air temperature (°C), sets the speed of sound"}};
+              {"bins", {121}, "bins along the line", 3.0, true},
+              {"temperature", {20.0}, "air temperature (°C), sets the speed of sound", -273.15}};
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("door-rs", [&](CaseResult& r) {
@@ -229,6 +230,9 @@ CaseInfo doorRsCase() {
       const auto door = wbsdf::Openings::slit(a);
       const std::uint64_t rays = raysOf(o, 32'000'000);
       const auto& freqs = p.at("freq");
+      for (std::size_t i = 0; i < freqs.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+          if (freqs[i] == freqs[j]) throw core::InputError("--freq", "lists a frequency twice");
       for (double f : freqs) {
         core::requirePositive("--freq", f);
         const double lambda = c_air / f;
@@ -248,7 +252,9 @@ CaseInfo doorRsCase() {
         };
         CaseResult part;
         runAperture(s, o, rays / freqs.size(), part);
-        const std::string label = "f=" + std::to_string(static_cast<int>(std::lround(f))) + "Hz";
+        std::ostringstream label_stream;
+        label_stream << "f=" << f << "Hz";
+        const std::string label = label_stream.str();
         for (Row row : part.rows) {
           row.label = label;
           r.rows.push_back(row);

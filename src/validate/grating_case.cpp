@@ -14,9 +14,9 @@ namespace diffray::validate {
 CaseInfo gratingOrdersCase() {
   CaseInfo c{"grating-orders", "sinusoidal phase grating: energy per order vs J_q(m/2)²", {}, 4'000'000, {}};
   c.params = {{"period", {1.6e-6}, "grating period Λ (m); a CD's track pitch is 1.6 µm"},
-              {"modulation", {2.0}, "phase modulation m: t = exp(i(m/2)·sin(2πx/Λ))"},
+              {"modulation", {2.0}, "phase modulation m: t = exp(i(m/2)·sin(2πx/Λ))", -1000.0, true, 1000.0},
               {"wavelength", {500e-9}, "wavelength (m)"},
-              {"periods", {64}, "illuminated periods"}};
+              {"periods", {64}, "illuminated periods", 1.0, true}};
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     if (o.model != "wigner") throw core::InputError("--model", "grating-orders takes the wigner model only");

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "diffray/core/error.h"
 #include "diffray/validate/case.h"
@@ -37,7 +38,19 @@ Params resolveParams(const CaseInfo& info, const Params& given) {
       throw core::InputError("--" + name, "does not apply to case " + info.name + " (it takes " + takes + ")");
     }
     if (values.empty()) throw core::InputError("--" + name, "needs a value");
-    for (double v : values) core::requireFinite("--" + name, v);
+    const ParamSpec& spec = *std::find_if(info.params.begin(), info.params.end(),
+                                          [&](const ParamSpec& p) { return p.name == name; });
+    for (double v : values) {
+      core::requireFinite("--" + name, v);
+      const bool above = spec.min_inclusive ? v >= spec.min : v > spec.min;
+      if (!above || !(v < spec.max)) {
+        std::ostringstream msg;
+        msg << "must be " << (spec.min_inclusive ? ">= " : "> ") << spec.min;
+        if (spec.max < 1e300) msg << " and < " << spec.max;
+        msg << ", got " << v;
+        throw core::InputError("--" + name, msg.str());
+      }
+    }
     it->second = values;
   }
   return out;

@@ -17,6 +17,9 @@ struct ParamSpec {
   std::string name;                ///< option name without dashes, e.g. "width"
   std::vector<double> defaults;    ///< default value(s); several for sweeps (door-rs frequencies)
   std::string help;
+  double min = 0.0;                ///< values must be > min (or >= min when min_inclusive) ...
+  bool min_inclusive = false;
+  double max = 1e300;              ///< ... and < max; checked by resolveParams before any case runs
 };
 
 /// One receiver bin (or one grating order) of a case: screen position, traced and reference values.
