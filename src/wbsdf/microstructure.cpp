@@ -135,7 +135,10 @@ std::pair<double, double> Openings::support() const {
 double Openings::featureSize() const {
   double f = kInf;
   for (const auto& [p, q] : intervals_) f = std::min(f, q - p);
-  for (std::size_t i = 1; i < intervals_.size(); ++i) f = std::min(f, intervals_[i].first - intervals_[i - 1].second);
+  for (std::size_t i = 1; i < intervals_.size(); ++i) {
+    const double gap = intervals_[i].first - intervals_[i - 1].second;
+    if (gap > 0.0) f = std::min(f, gap);  // touching openings have no gap to resolve
+  }
   return half_plane_ ? half_plane_extent_ : f;
 }
 

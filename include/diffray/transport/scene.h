@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "diffray/core/error.h"
 #include "diffray/geometry/embree_scene.h"
 #include "diffray/geometry/frame.h"
 #include "diffray/receiver/screen.h"
@@ -67,7 +68,10 @@ class Scene {
   /// Builds the Embree scene (brute_force = true: the test back end). Call once after adding objects.
   void build(bool brute_force = false);
 
-  const geometry::Intersector& intersector() const { return *intersector_; }
+  const geometry::Intersector& intersector() const {
+    DIFFRAY_CHECK(intersector_ != nullptr);  // build() first
+    return *intersector_;
+  }
   const geometry::EmbreeScene* embree() const { return dynamic_cast<const geometry::EmbreeScene*>(intersector_.get()); }
   const geometry::Mesh& mesh() const { return mesh_; }
 
