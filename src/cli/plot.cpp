@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -52,8 +51,12 @@ void writeValidationPlot(const std::string& png_path, const std::vector<validate
   for (std::size_t c = 0; c < results.size(); ++c) {
     const auto& r = results[c];
     // One data block per label (frequency), blocks separated by two blank lines for gnuplot's `index`.
-    std::map<std::string, std::vector<const validate::Row*>> by_label;
-    for (const auto* row : plottedRows(r)) by_label[row->label].push_back(row);
+    // Patterns in the order the case produced them (door-rs: the frequencies as given).
+    std::vector<std::pair<std::string, std::vector<const validate::Row*>>> by_label;
+    for (const auto* row : plottedRows(r)) {
+      if (by_label.empty() || by_label.back().first != row->label) by_label.push_back({row->label, {}});
+      by_label.back().second.push_back(row);
+    }
     const fs::path data = dir / ("case" + std::to_string(c) + ".dat");
     std::ofstream out(data);
     for (const auto& [label, rows_of] : by_label) {

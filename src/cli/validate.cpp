@@ -29,6 +29,7 @@ struct ValidateOptions {
   std::uint64_t rays = 0;
   std::string csv;
   std::string plot;
+  bool verbose = false;
   std::string sampler = "qmc";
   std::string model = "wigner";
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
@@ -59,7 +60,7 @@ void writeCsv(const std::string& path, const std::vector<validate::CaseResult>& 
   });
 }
 
-void printTable(const std::vector<validate::CaseResult>& results) {
+void printTable(const std::vector<validate::CaseResult>& results, bool verbose) {
   std::printf("%-16s %10s %8s %12s %12s %12s %10s  %s\n", "case", "rays", "seconds", "max err %pk",
               "rms err %pk", "noise %pk", "neg. frac", "result");
   for (const auto& r : results)
@@ -68,7 +69,7 @@ void printTable(const std::vector<validate::CaseResult>& results) {
                 100 * r.rms_error_rel_peak, 100 * r.max_std_error_rel_peak, r.negative_energy_fraction,
                 r.passed ? "pass" : "MISSED target");
   for (const auto& r : results)
-    if (r.extra.size()) {
+    if (verbose && r.extra.size()) {
       std::printf("%s:", r.name.c_str());
       for (const auto& [k, v] : r.extra) std::printf(" %s=%.4g", k.c_str(), v);
       std::printf("\n");
@@ -98,6 +99,8 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       ->capture_default_str();
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
+  sub->add_flag("--verbose", opts->verbose,
+                "also print each case's extra figures (energy balance, per-frequency errors, table sizes)");
   sub->add_option("--csv", opts->csv, "write one row per receiver bin to this CSV file");
   sub->add_option("--plot", opts->plot, "draw traced vs reference into this PNG (needs gnuplot)");
   sub->add_option("--sampler", opts->sampler, "qmc: randomised quasi-Monte Carlo; mc: plain Monte Carlo")
@@ -179,7 +182,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
     }
     if (!opts->plot.empty()) writeValidationPlot(opts->plot, results);  // first: the likelier to fail
     if (!opts->csv.empty()) writeCsv(opts->csv, results);
-    if (!common.json) printTable(results);
+    if (!common.json) printTable(results, opts->verbose);
     return all_passed ? 0 : 1;
   };
 }
