@@ -329,3 +329,33 @@ TEST(WbsdfTableRough, SecondMomentMatchesCorrelationCurvature) {
   // Stationary: the same row at any x.
   EXPECT_EQ(table->sample(-3.7, 0.3).u_shift, table->sample(12.1, 0.3).u_shift);
 }
+
+// The third member of the sampling triad: eval(x, u') is the tabulated W, mass/du for continuous tables
+// and the line's mass for line spectra; pdf = |eval|/rowAbsMass (per unit u for continuous tables). The
+// oracle is the closed form integrated by the tests' own quadrature (slit) and the Bessel products (grating).
+TEST(WbsdfTableSampling, EvalIsTheTabulatedDistribution) {
+  const double a = 1e-4, lambda = 5e-7;
+  const auto slit = dw::Openings::slit(a);
+  const auto table = dw::WbsdfTable::build(*slit, optionsFor(lambda));
+  const auto& L = table->layout();
+  const int j = L.nx / 3;
+  const double x1 = L.x0_m + j * L.dx_m;
+  for (int k : {L.nu / 2 - 7, L.nu / 2, L.nu / 2 + 40}) {
+    const double u1 = L.u0_per_m + k * L.du_per_m;
+    const double mass =
+        quad([&](double x) { return quad([&](double u) { return rectWdf(x, u, a); }, u1, u1 + L.du_per_m, 2); },
+             x1, x1 + L.dx_m, 4) /
+        L.dx_m;
+    const double x_mid = x1 + 0.5 * L.dx_m, u_mid = u1 + 0.5 * L.du_per_m;
+    EXPECT_NEAR(table->eval(x_mid, u_mid) * L.du_per_m, mass, 1e-6 * 2.0 * a * L.du_per_m);
+    EXPECT_NEAR(table->pdf(x_mid, u_mid), std::abs(table->eval(x_mid, u_mid)) / table->rowAbsMass(j), 1e-12);
+  }
+  // Grating: eval at a line is its weight; x-averaged over a period, line 2q carries J_q(m/2)².
+  const double period = 1.6e-6, m = 2.0;
+  dw::PhaseGrating grating(period, m);
+  const auto gt = dw::WbsdfTable::build(grating, optionsFor(lambda));
+  double order1 = 0.0;
+  for (int r = 0; r < gt->layout().nx; ++r)
+    order1 += gt->eval(gt->layout().x0_m + (r + 0.5) * gt->layout().dx_m, 1.0 / period) / gt->layout().nx;
+  EXPECT_NEAR(order1, std::pow(std::cyl_bessel_j(1, 0.5 * m), 2), 1e-9);
+}

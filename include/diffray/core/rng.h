@@ -28,15 +28,14 @@ class Rng {
 namespace diffray::core {
 
 /// Uniforms for the rays of one chunk. With qmc, a ray's first `dims` uniforms come from a randomly
-/// shifted Kronecker lattice (the R_d sequence: point j = frac(shift + j·α), α_i = φ_d^−(i+1), φ_d the
-/// root of x^{d+1} = x + 1) and later ones from the chunk's Rng: randomised quasi-Monte Carlo, so each
-/// chunk is an independent unbiased replicate whose points are evenly spread. Without qmc every uniform
+/// shifted Kronecker lattice (point j = frac(shift + j·α) with the caller's generators α, irrationals
+/// independent over the rationals) and later ones from the chunk's Rng: randomised quasi-Monte Carlo, so
+/// each chunk is an independent unbiased replicate whose points are evenly spread. Without qmc every uniform
 /// comes from the Rng (plain Monte Carlo). Not thread-safe: one per chunk.
 class ChunkSampler {
  public:
   static constexpr int kMaxDims = 8;
-  ChunkSampler(Rng& rng, int dims, bool qmc);
-  /// With explicit Kronecker generators alpha[0..dims) (irrationals, independent over the rationals).
+  /// Kronecker generators alpha[0..dims) (irrationals, independent over the rationals).
   ChunkSampler(Rng& rng, const double* alpha, int dims, bool qmc);
   /// Uniform number `dim` of ray `index` (0-based within the chunk); the caller advances `dim`.
   double next(std::uint64_t index, int& dim) { return at(index, dim++); }

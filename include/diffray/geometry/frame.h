@@ -1,7 +1,8 @@
 #pragma once
 // A planar object's local frame: origin, two in-plane unit axes ex, ey and the normal n = ex × ey (world
-// frame, metres, double precision). Local coordinates of a hit are what a WBSDF is indexed by, so they are
-// computed in double from the ray (design.md §1), never from Embree's float hit. Plain value type.
+// frame, metres, double precision). Local coordinates of a hit, (p − origin)·ex and ·ey, are what a WBSDF
+// is indexed by, so the tracer computes them in double from the ray (design.md §1), never from Embree's
+// float hit. Plain value type.
 #include "diffray/core/math.h"
 
 namespace diffray::geometry {
@@ -15,10 +16,6 @@ struct Frame {
   /// Frame at `origin` with normal `normal` and in-plane x axis as close as possible to `x_hint`.
   static Frame make(const core::Vec3& origin, const core::Vec3& normal, const core::Vec3& x_hint);
 
-  /// Distance along a unit-direction ray to the plane (may be negative or inf when parallel).
-  double planeDistance(const core::Vec3& o, const core::Vec3& d) const { return (origin - o).dot(n) / d.dot(n); }
-  double localX(const core::Vec3& p) const { return (p - origin).dot(ex); }
-  double localY(const core::Vec3& p) const { return (p - origin).dot(ey); }
 };
 
 }  // namespace diffray::geometry
