@@ -20,6 +20,9 @@ double usefulShiftRange(double wavelength, double screen_half, double support_ha
   return std::min(2.0 / wavelength, 1.25 * sin_max / wavelength + 8.0 / (2.0 * support_half));
 }
 
+// A u-cell of width du blurs landing positions by up to λ·z·du: this du keeps that under 1/8 of a bin.
+double cellWidthU(const ApertureSetup& s, double bin_m) { return bin_m / (8.0 * s.wavelength_m * s.distance_m); }
+
 std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const wbsdf::Microstructure& m, const ApertureSetup& s,
                                                   double screen_half, int bins) {
   const auto [lo, hi] = m.support();
@@ -31,9 +34,7 @@ std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const wbsdf::Microstructure& m
   const double dx = std::min(bin_m, m.featureSize()) / 8.0;
   o.rows_per_feature =
       std::max(8, std::min(s.max_rows_per_feature, core::checkedCount("table rows", m.featureSize() / dx, 1e9)));
-  // A u-cell of width du blurs landing positions by up to λ·z·du: keep that under 1/8 of a bin.
-  const double bin = 2.0 * screen_half / bins;
-  const double du = bin / (8.0 * s.wavelength_m * s.distance_m);
+  const double du = cellWidthU(s, bin_m);
   o.cells_per_coherence =
       std::max(o.cells_per_coherence, core::checkedCount("table columns", 1.0 / (du * m.coherenceLength()), 1e9));
   o.u_half_range_per_m = usefulShiftRange(s.wavelength_m, screen_half, 0.5 * (hi - lo), s.distance_m);
@@ -65,7 +66,7 @@ void runAperture(const ApertureSetup& s, const RunOptions& options, std::uint64_
                                (hi - lo + 2.0 * ai.margin_m) / (std::min(bin_m, hi - lo) / 8.0), 1e7);
     ai.u_half_range_per_m = usefulShiftRange(s.wavelength_m, s.screen_half_x_m, 0.5 * (hi - lo), s.distance_m);
     ai.nu = core::checkedCount("angle-impact table columns",
-                               2.0 * ai.u_half_range_per_m / (bin_m / (8.0 * s.wavelength_m * s.distance_m)), 1e7);
+                               2.0 * ai.u_half_range_per_m / cellWidthU(s, bin_m), 1e7);
     occ.table_x = wbsdf::angleImpactTable(
         [openings](double u) { return wbsdf::openingsSpectrum(*openings, u); }, ai);
   } else {
