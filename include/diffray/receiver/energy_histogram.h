@@ -1,0 +1,85 @@
+#pragma once
+// A listener's energy field: a dense band × time-bin array of signed energy (style.md: the energy field
+// as channel × band × bin, with a named bin width), plus the sum of squared chunk totals per cell so that
+// each cell has a standard error from the chunk-to-chunk scatter (as ScreenTally, receiver/screen.h).
+// Units: energy per unit area (J/m², the fluence through the listener), normalised by the tracer so that
+// a source of power 1 W gives 1/r² at distance r in free field; bin b covers [b·bin_s, (b+1)·bin_s).
+// One per chunk, merged in a fixed order (core/parallel.h); not synchronised.
+#include <cstdint>
+#include <vector>
+
+namespace diffray::receiver {
+
+class EnergyHistogram {
+ public:
+  EnergyHistogram() = default;
+  EnergyHistogram(int bands, int bins, double bin_s)
+      : bands_(bands), bins_(bins), bin_s_(bin_s), sum_(std::size_t(bands) * bins, 0.0),
+        sum_sq_(std::size_t(bands) * bins, 0.0), chunk_(std::size_t(bands) * bins, 0.0),
+        exact_(std::size_t(bands) * bins, 0.0) {}
+
+  int bands() const { return bands_; }
+  int bins() const { return bins_; }
+  double binSeconds() const { return bin_s_; }
+  double lengthSeconds() const { return bins_ * bin_s_; }
+  /// Bin of time t, or −1 if t is outside [0, length).
+  int binOf(double t_s) const {
+    if (!(t_s >= 0.0)) return -1;
+    const double f = t_s / bin_s_;
+    return f < bins_ ? static_cast<int>(f) : -1;
+  }
+  /// Adds energy to the open chunk.
+  void add(int band, int bin, double energy) { chunk_[std::size_t(band) * bins_ + bin] += energy; }
+  /// Adds energy straight to the totals (deterministic contributions such as image sources: no scatter).
+  void addExact(int band, int bin, double energy) { exact_[std::size_t(band) * bins_ + bin] += energy; }
+  /// Folds the open chunk into the totals.
+  void closeChunk() {
+    for (std::size_t i = 0; i < chunk_.size(); ++i) {
+      sum_[i] += chunk_[i];
+      sum_sq_[i] += chunk_[i] * chunk_[i];
+      chunk_[i] = 0.0;
+    }
+    ++chunks_;
+  }
+  void merge(const EnergyHistogram& o) {
+    for (std::size_t i = 0; i < sum_.size(); ++i) {
+      sum_[i] += o.sum_[i];
+      sum_sq_[i] += o.sum_sq_[i];
+      exact_[i] += o.exact_[i];
+    }
+    chunks_ += o.chunks_;
+  }
+  /// Multiplies totals (and squared totals consistently) by `factor`, e.g. 1/rays.
+  void scale(double factor) {
+    for (std::size_t i = 0; i < sum_.size(); ++i) {
+      sum_[i] *= factor;
+      sum_sq_[i] *= factor * factor;
+      exact_[i] *= factor;
+    }
+  }
+  /// Traced plus exact energy of a cell.
+  double value(int band, int bin) const {
+    const std::size_t i = std::size_t(band) * bins_ + bin;
+    return sum_[i] + exact_[i];
+  }
+  /// The traced (Monte Carlo) part alone.
+  double traced(int band, int bin) const { return sum_[std::size_t(band) * bins_ + bin]; }
+  /// Standard error of value(band, bin) (of its traced part: exact energy has none) from the chunk scatter (0 with fewer than 2 chunks). Valid after
+  /// scale() too, since sum and sum_sq scale together.
+  double standardError(int band, int bin) const;
+  /// The band's whole time series (bins values).
+  std::vector<double> band(int b) const {
+    std::vector<double> out(bins_);
+    for (int i = 0; i < bins_; ++i) out[i] = value(b, i);
+    return out;
+  }
+  std::uint64_t chunks() const { return chunks_; }
+
+ private:
+  int bands_ = 0, bins_ = 0;
+  double bin_s_ = 0.001;
+  std::vector<double> sum_, sum_sq_, chunk_, exact_;
+  std::uint64_t chunks_ = 0;
+};
+
+}  // namespace diffray::receiver
