@@ -1,0 +1,49 @@
+#pragma once
+// A whole room run (issue 2/5 rooms): the air (ISO 9613-1, room/air.h), the IR length, image sources up to
+// the room's order for every source–listener pair and rays for the rest (transport/image_sources.h and
+// room_tracer.h, which never count a path twice), summed over the sources into one ir::EnergyResponse per
+// listener. The length is the room file's, or "auto": 1.5 × the longest Eyring T60 over the bands (a
+// specular room decays more slowly than Eyring) plus the longest direct delay, capped at max_length_s,
+// so the decay has reached −60 dB. Warnings (rays lost through gaps, a source outside the room) are
+// returned, not thrown: the run goes on. Units: seconds, metres, J/m². Deterministic for a seed.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "diffray/ir/response.h"
+#include "diffray/receiver/energy_histogram.h"
+#include "diffray/room/room.h"
+
+namespace diffray::transport {
+
+struct RoomSimulationOptions {
+  std::uint64_t rays = 0;  ///< per source; 0 = the room file's output.rays
+  std::uint64_t seed = 1;
+  int ism_order = -2;      ///< −2 = the room file's; −1 = no image sources (rays alone)
+  double length_s = 0.0;   ///< 0 = the room file's (or auto)
+  bool brute_force = false;  ///< tests only: the brute-force intersector
+  std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
+};
+
+struct RoomSimulation {
+  std::vector<ir::EnergyResponse> listeners;          ///< per room listener
+  std::vector<receiver::EnergyHistogram> traced;      ///< the traced part with its standard errors
+  double length_s = 0.0;
+  double eyring_t60_s = 0.0;  ///< the longest band's Eyring estimate used for "auto"
+  double speed_of_sound_m_s = 0.0;
+  core::BandArray air_m_per_m = core::bandFill(0.0);
+  int ism_order = 0;
+  std::uint64_t rays = 0, segments = 0, escaped = 0, roulette_killed = 0, timed_out = 0;
+  std::size_t image_sources = 0;  ///< valid image-source paths over all pairs
+  double trace_seconds = 0.0, ism_seconds = 0.0;
+  std::vector<std::string> warnings;
+};
+
+RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions& options);
+
+/// The Eyring reverberation time per band of `room` (area-weighted mean absorption of its triangles, its
+/// divergence-theorem volume, air absorption), T = 24 ln10 V / (c (−S ln(1 − ᾱ) + 4mV)).
+core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, const core::BandArray& air_m_per_m);
+
+}  // namespace diffray::transport

@@ -1,0 +1,61 @@
+#pragma once
+// The acoustic ray tracer (issue 2/5 rooms). A ray leaves a point source in a direction drawn uniformly
+// on the sphere, weighted by the source's normalised power pattern, and carries one energy per band at
+// once (core::BandArray). At a surface it is reflected or transmitted with probabilities proportional to
+// the energy-weighted mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert
+// (cosine lobe) with the energy-weighted mean scattering probability s, else specular; the band energies
+// are reweighted by the per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF
+// occluder, next issue, is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1)
+// is applied along the path; Russian roulette below `roulette_level` of the emitted energy keeps the
+// estimator unbiased. Listener spheres score the track length inside them (receiver/sphere.h) into band ×
+// time histograms, time = path length / c.
+// Paths made only of specular reflections (no transmission, no diffuse bounce) of order ≤ skip_order are
+// NOT scored: the image-source method (transport/image_sources.h) adds them exactly, so nothing is counted
+// twice. Units: metres, seconds, energy as fluence J/m² (a 1 W omni source gives 1/r² in free field).
+// Deterministic: the same seed gives identical histograms for any thread count (core/parallel.h).
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "diffray/core/bands.h"
+#include "diffray/receiver/energy_histogram.h"
+#include "diffray/receiver/sphere.h"
+#include "diffray/room/room.h"
+#include "diffray/transport/room_geometry.h"
+
+namespace diffray::transport {
+
+struct RoomTraceOptions {
+  std::uint64_t rays = 100000;
+  std::uint64_t seed = 1;
+  std::uint64_t chunk_rays = 8192;
+  double length_s = 1.0;         ///< rays are followed (and histograms kept) up to this time
+  double bin_s = 0.001;          ///< histogram bin width
+  int skip_order = 0;            ///< specular-only paths of order ≤ this are left to image sources; −1: none
+  double roulette_level = 1e-6;  ///< Russian roulette below this fraction of the emitted energy (−60 dB)
+  double speed_of_sound_m_s = 343.0;
+  core::BandArray air_m_per_m = core::bandFill(0.0);  ///< energy attenuation per metre, per band
+  std::function<void(std::uint64_t)> on_progress;     ///< rays done per chunk (thread-safe)
+};
+
+struct RoomTraceResult {
+  std::vector<receiver::EnergyHistogram> listeners;  ///< per room listener, J/m² per bin
+  std::vector<std::uint64_t> crossings;  ///< per listener: segments that crossed its sphere (scored or not)
+  std::uint64_t rays = 0;
+  std::uint64_t segments = 0;       ///< intersection queries
+  std::uint64_t escaped = 0;        ///< rays that left the geometry (a leak or a source outside)
+  std::uint64_t roulette_killed = 0;
+  std::uint64_t timed_out = 0;      ///< rays still alive at length_s
+  double seconds = 0.0;
+  void merge(const RoomTraceResult& o);
+};
+
+/// Traces `options.rays` rays from source `source_index` of `room` through `geometry`.
+RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, int source_index,
+                          const RoomTraceOptions& options);
+
+/// The normalised power pattern of a first-order source, D(θ) = (a + (1 − a)cosθ)² / (a² + (1 − a)²/3),
+/// whose mean over the sphere is 1; `cos_theta` is the cosine to the source's axis.
+double directivityGain(const room::Directivity& d, double cos_theta);
+
+}  // namespace diffray::transport

@@ -1,0 +1,146 @@
+#include "diffray/transport/image_sources.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "diffray/core/error.h"
+#include "diffray/transport/room_tracer.h"
+
+namespace diffray::transport {
+
+using core::Vec3;
+
+namespace {
+
+struct Validator {
+  const room::Room& room;
+  const RoomGeometry& geometry;
+  std::vector<char> opening;  ///< per material: transmits everything
+
+  // First hit along from → from + dist·dir that is not an opening: its triangle and distance, or −1.
+  int firstSurface(const Vec3& from, const Vec3& dir, double max_t, double& t_out) const {
+    const double eps = 1e-7 * geometry.extent();
+    double t0 = eps;
+    for (int guard = 0; guard < 64; ++guard) {
+      const geometry::Hit hit = geometry.intersector().intersect(geometry::Ray{from, dir, t0, max_t});
+      if (!hit.valid()) return -1;
+      double t = geometry.planeDistance(hit.triangle, from, dir);
+      if (!(t > 0.0 && t < 1e300)) t = hit.t;
+      if (!opening[geometry.triangle(hit.triangle).material]) {
+        t_out = t;
+        return hit.triangle;
+      }
+      t0 = t + eps;
+    }
+    return -1;
+  }
+
+  // Traces the candidate back from the listener; on success fills the reflection points' triangles.
+  bool validate(const Vec3& source, const Vec3& listener, const std::vector<int>& planes,
+                const std::vector<Vec3>& images, std::vector<int>& triangles, Vec3& first_leg_dir) const {
+    const double tol = 1e-6 * geometry.extent();
+    Vec3 x = listener;
+    triangles.assign(planes.size(), -1);
+    for (int k = static_cast<int>(planes.size()) - 1; k >= 0; --k) {
+      const MirrorPlane& pl = geometry.planes()[planes[k]];
+      const Vec3 to_image = images[k] - x;
+      const double denom = pl.normal.dot(to_image);
+      if (std::abs(denom) < 1e-300) return false;
+      const double s = (pl.offset - pl.normal.dot(x)) / denom;  // crossing at x + s·to_image
+      if (!(s > 0.0 && s < 1.0)) return false;
+      const double len = to_image.norm();
+      const Vec3 dir = to_image / len;
+      double t;
+      const int tri = firstSurface(x, dir, 1e300, t);
+      if (tri < 0 || geometry.triangle(tri).plane != planes[k] || std::abs(t - s * len) > tol) return false;
+      triangles[k] = tri;
+      x += s * to_image;
+    }
+    const Vec3 to_source = source - x;
+    const double dist = to_source.norm();
+    if (!(dist > tol)) return false;
+    double t;
+    const int blocker = firstSurface(x, to_source / dist, dist - tol, t);
+    if (blocker >= 0) return false;
+    first_leg_dir = -to_source / dist;  // leaving the source
+    return true;
+  }
+};
+
+Vec3 mirror(const Vec3& p, const MirrorPlane& pl) { return p - 2.0 * (pl.normal.dot(p) - pl.offset) * pl.normal; }
+
+}  // namespace
+
+std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry& geometry, int source,
+                                      int listener, const ImageSourceOptions& options) {
+  if (options.max_order < 0) throw core::InputError("ism_order", "must be >= 0");
+  const int n_planes = static_cast<int>(geometry.planes().size());
+  double candidates = 1.0, level = n_planes;
+  for (int k = 1; k <= options.max_order; ++k) {
+    candidates += level;
+    level *= std::max(n_planes - 1, 1);
+  }
+  if (candidates > options.max_candidates)
+    throw core::InputError("output.ism_order", "order " + std::to_string(options.max_order) + " with " +
+                                                   std::to_string(n_planes) + " planes makes " +
+                                                   std::to_string(static_cast<long long>(candidates)) +
+                                                   " image-source candidates; lower it");
+  Validator v{room, geometry, {}};
+  for (const auto& m : room.materials) {
+    bool open = true;
+    for (int b = 0; b < room.bands.size(); ++b) open = open && m.transmission[b] >= 1.0 - 1e-12;
+    v.opening.push_back(open ? 1 : 0);
+  }
+  const room::Source& src = room.sources[source];
+  const Vec3 s = src.position_m, l = room.listeners[listener].position_m;
+  const Vec3 axis = src.directivity.axis.normalized();
+  const double max_d = options.length_s * options.speed_of_sound_m_s;
+  const int nb = room.bands.size();
+  std::vector<ir::Arrival> out;
+  std::vector<int> planes, triangles;
+  std::vector<Vec3> images;
+
+  auto emit = [&] {
+    const Vec3& img = images.empty() ? s : images.back();
+    const double d = (img - l).norm();
+    if (!(d > 0.0) || d > max_d) return;
+    Vec3 leg;
+    if (!v.validate(s, l, planes, images, triangles, leg)) return;
+    ir::Arrival a;
+    a.delay_s = d / options.speed_of_sound_m_s;
+    a.order = static_cast<int>(planes.size());
+    const double gain = src.power_w * directivityGain(src.directivity, leg.dot(axis)) / (d * d);
+    for (int b = 0; b < nb; ++b) {
+      double e = gain * std::exp(-options.air_m_per_m[b] * d);
+      for (int tri : triangles) {
+        const room::Material& m = room.materials[geometry.triangle(tri).material];
+        e *= (1.0 - m.absorption[b]) * (1.0 - m.scattering[b]);
+      }
+      a.energy[b] = e;
+    }
+    out.push_back(a);
+  };
+  // Depth-first over plane sequences up to max_order (emit() drops arrivals later than length_s; an
+  // image's distance does not bound its children's in a non-convex room, so it cannot prune).
+  auto recurse = [&](auto&& self, int depth) -> void {
+    emit();
+    if (depth == options.max_order) return;
+    const Vec3 from = images.empty() ? s : images.back();
+    for (int p = 0; p < n_planes; ++p) {
+      if (!planes.empty() && planes.back() == p) continue;
+      const MirrorPlane& pl = geometry.planes()[p];
+      if (std::abs(pl.normal.dot(from) - pl.offset) < 1e-9 * geometry.extent()) continue;  // on the plane
+      planes.push_back(p);
+      images.push_back(mirror(from, pl));
+      self(self, depth + 1);
+      planes.pop_back();
+      images.pop_back();
+    }
+  };
+  recurse(recurse, 0);
+  std::sort(out.begin(), out.end(), [](const ir::Arrival& a, const ir::Arrival& b) { return a.delay_s < b.delay_s; });
+  return out;
+}
+
+}  // namespace diffray::transport

@@ -1,0 +1,126 @@
+#include "diffray/transport/room_simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "diffray/core/error.h"
+#include "diffray/room/air.h"
+#include "diffray/transport/image_sources.h"
+#include "diffray/transport/room_geometry.h"
+#include "diffray/transport/room_tracer.h"
+
+namespace diffray::transport {
+
+core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, const core::BandArray& air_m_per_m) {
+  const int nb = room.bands.size();
+  core::BandArray absorbed = core::bandFill(0.0);
+  double area = 0.0;
+  const auto& mesh = room.mesh;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const double a = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
+    area += a;
+    const room::Material& m = room.materials[mesh.object_of_triangle[i]];
+    for (int b = 0; b < nb; ++b) absorbed[b] += a * m.absorption[b];
+  }
+  const double volume = room.volume();
+  core::BandArray t60 = core::bandFill(0.0);
+  for (int b = 0; b < nb; ++b) {
+    const double mean_alpha = std::min(absorbed[b] / area, 1.0 - 1e-12);
+    const double denom = speed_of_sound_m_s * (-area * std::log(1.0 - mean_alpha) + 4.0 * air_m_per_m[b] * volume);
+    t60[b] = denom > 0.0 ? 24.0 * std::log(10.0) * volume / denom : 0.0;
+  }
+  return t60;
+}
+
+RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions& options) {
+  if (room.sources.empty()) throw core::InputError(room.file, "sources: at least one source is needed");
+  if (room.listeners.empty()) throw core::InputError(room.file, "listeners: at least one listener is needed");
+  RoomSimulation sim;
+  sim.speed_of_sound_m_s = room::speedOfSound(room.air);
+  sim.air_m_per_m = room::airAttenuationPerM(room.air, room.bands);
+  sim.ism_order = options.ism_order == -2 ? room.output.ism_order : options.ism_order;
+  const std::uint64_t rays = options.rays ? options.rays : room.output.rays;
+  const int nb = room.bands.size();
+
+  // The IR length: given, or auto from Eyring (see the header).
+  const core::BandArray t60 = eyringT60(room, sim.speed_of_sound_m_s, sim.air_m_per_m);
+  sim.eyring_t60_s = *std::max_element(t60.begin(), t60.begin() + nb);
+  double direct = 0.0;
+  for (const auto& s : room.sources)
+    for (const auto& l : room.listeners) direct = std::max(direct, (s.position_m - l.position_m).norm() / sim.speed_of_sound_m_s);
+  sim.length_s = options.length_s > 0 ? options.length_s : room.output.ir_length_s;
+  if (!(sim.length_s > 0)) sim.length_s = std::min(room.output.max_length_s, 1.5 * sim.eyring_t60_s + direct + 0.05);
+  if (!(sim.length_s > 0)) sim.length_s = room.output.max_length_s;
+
+  const RoomGeometry geometry(room, options.brute_force);
+  for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+    ir::EnergyResponse r;
+    r.bands = room.bands;
+    r.bin_s = room.output.histogram_bin_s;
+    sim.listeners.push_back(r);
+  }
+  // Image sources: exact arrivals per source–listener pair.
+  const auto t_ism = std::chrono::steady_clock::now();
+  if (sim.ism_order >= 0) {
+    ImageSourceOptions io;
+    io.max_order = sim.ism_order;
+    io.length_s = sim.length_s;
+    io.speed_of_sound_m_s = sim.speed_of_sound_m_s;
+    io.air_m_per_m = sim.air_m_per_m;
+    for (int s = 0; s < static_cast<int>(room.sources.size()); ++s)
+      for (int l = 0; l < static_cast<int>(room.listeners.size()); ++l) {
+        auto arrivals = imageSources(room, geometry, s, l, io);
+        sim.image_sources += arrivals.size();
+        auto& dst = sim.listeners[l].arrivals;
+        dst.insert(dst.end(), arrivals.begin(), arrivals.end());
+      }
+    for (auto& r : sim.listeners)
+      std::sort(r.arrivals.begin(), r.arrivals.end(),
+                [](const ir::Arrival& a, const ir::Arrival& b) { return a.delay_s < b.delay_s; });
+  }
+  sim.ism_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ism).count();
+
+  // Rays: each source in turn, histograms summed per listener.
+  RoomTraceOptions to;
+  to.rays = rays;
+  to.length_s = sim.length_s;
+  to.bin_s = room.output.histogram_bin_s;
+  to.skip_order = sim.ism_order;
+  to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
+  to.air_m_per_m = sim.air_m_per_m;
+  to.on_progress = options.on_progress;
+  for (int s = 0; s < static_cast<int>(room.sources.size()); ++s) {
+    to.seed = options.seed + 1000003ull * static_cast<std::uint64_t>(s);  // independent streams per source
+    RoomTraceResult res = traceRoom(room, geometry, s, to);
+    if (sim.traced.empty()) {
+      sim.traced = res.listeners;
+    } else {
+      for (std::size_t l = 0; l < sim.traced.size(); ++l) sim.traced[l].merge(res.listeners[l]);
+    }
+    sim.rays += res.rays;
+    sim.segments += res.segments;
+    sim.escaped += res.escaped;
+    sim.roulette_killed += res.roulette_killed;
+    sim.timed_out += res.timed_out;
+    sim.trace_seconds += res.seconds;
+    if (res.escaped > 0) {
+      std::ostringstream w;
+      w << "source " << room.sources[s].name << ": " << res.escaped << " of " << res.rays << " rays ("
+        << 100.0 * static_cast<double>(res.escaped) / static_cast<double>(res.rays)
+        << " %) left the room: a gap in the mesh, or the source is outside the room";
+      sim.warnings.push_back(w.str());
+    }
+  }
+  for (std::size_t l = 0; l < sim.listeners.size(); ++l) {
+    auto& r = sim.listeners[l];
+    r.traced.assign(nb, std::vector<double>(sim.traced[l].bins(), 0.0));
+    for (int b = 0; b < nb; ++b)
+      for (int i = 0; i < sim.traced[l].bins(); ++i) r.traced[b][i] = sim.traced[l].value(b, i);
+  }
+  return sim;
+}
+
+}  // namespace diffray::transport

@@ -1,0 +1,273 @@
+#include "diffray/transport/room_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/core/rng.h"
+
+namespace diffray::transport {
+
+using core::Vec3;
+
+void RoomTraceResult::merge(const RoomTraceResult& o) {
+  if (listeners.empty()) {
+    listeners = o.listeners;
+    crossings = o.crossings;
+  } else {
+    for (std::size_t i = 0; i < listeners.size(); ++i) {
+      listeners[i].merge(o.listeners[i]);
+      crossings[i] += o.crossings[i];
+    }
+  }
+  rays += o.rays;
+  segments += o.segments;
+  escaped += o.escaped;
+  roulette_killed += o.roulette_killed;
+  timed_out += o.timed_out;
+}
+
+double directivityGain(const room::Directivity& d, double cos_theta) {
+  const double amp = d.a + (1.0 - d.a) * cos_theta;
+  return amp * amp / (d.a * d.a + (1.0 - d.a) * (1.0 - d.a) / 3.0);
+}
+
+namespace {
+
+// The emission direction is the only quasi-random part of a path (a 2D R2 lattice, core::ChunkSampler):
+// it decides the early reflections, where QMC pays; bounces use the chunk's Rng.
+constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
+
+// Per-material coefficients in flat arrays, looked up at every bounce.
+struct MaterialTable {
+  std::vector<core::BandArray> reflect, transmit, scatter;
+  std::vector<char> opening;  ///< τ = 1 in every band: a hole, not a surface (never an event)
+};
+
+MaterialTable makeMaterials(const room::Room& room) {
+  MaterialTable t;
+  const int nb = room.bands.size();
+  for (const room::Material& m : room.materials) {
+    core::BandArray r = core::bandFill(0.0), tr = core::bandFill(0.0), sc = core::bandFill(0.0);
+    bool open = true;
+    for (int b = 0; b < nb; ++b) {
+      r[b] = 1.0 - m.absorption[b];
+      tr[b] = m.transmission[b];
+      sc[b] = m.scattering[b];
+      open = open && m.transmission[b] >= 1.0 - 1e-12;
+    }
+    t.reflect.push_back(r);
+    t.transmit.push_back(tr);
+    t.scatter.push_back(sc);
+    t.opening.push_back(open ? 1 : 0);
+  }
+  return t;
+}
+
+// A unit vector with the cosine-weighted (Lambert) density about the unit normal n.
+Vec3 sampleLambert(const Vec3& n, double u1, double u2) {
+  // Orthonormal basis (Duff et al. 2017, branchless).
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z()), b = n.x() * n.y() * a;
+  const Vec3 t1(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  const Vec3 t2(b, sign + n.y() * n.y() * a, -n.y());
+  const double r = std::sqrt(u1), phi = core::kTwoPi * u2;
+  return r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
+}
+
+// Entry and exit distances of the segment [0, t_end) through a sphere, or false if it misses.
+bool chordSpan(const receiver::Sphere& s, const Vec3& o, const Vec3& d, double t_end, double& t_in, double& t_out) {
+  const Vec3 oc = o - s.centre;
+  const double b = oc.dot(d), c = oc.squaredNorm() - s.radius_m * s.radius_m;
+  const double disc = b * b - c;
+  if (disc <= 0.0) return false;
+  const double root = std::sqrt(disc);
+  t_in = std::max(-b - root, 0.0);
+  t_out = std::min(-b + root, t_end);
+  return t_out > t_in;
+}
+
+struct Tracer {
+  const room::Room& room;
+  const RoomGeometry& geometry;
+  const RoomTraceOptions& opt;
+  MaterialTable materials;
+  std::vector<receiver::Sphere> spheres;
+  int bands = 0, bins = 0;
+  double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
+  double max_path_m = 0.0;
+  double eps_m = 0.0;
+  double air_min = 0.0;  ///< smallest air attenuation over the bands (1/m)
+
+  // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
+  // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored.
+  void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
+             const core::BandArray& energy, bool skip) const {
+    for (std::size_t l = 0; l < spheres.size(); ++l) {
+      double t_in, t_out;
+      if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
+      ++acc.crossings[l];
+      if (skip) continue;
+      const double s_mid = path_m + 0.5 * (t_in + t_out);
+      const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
+      if (bin < 0) continue;
+      // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
+      const double w = spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
+      for (int b = 0; b < bands; ++b)
+        acc.listeners[l].add(b, bin, energy[b] * std::exp(-opt.air_m_per_m[b] * s_mid) * w);
+    }
+  }
+
+  void tracePath(RoomTraceResult& acc, core::Rng& rng, const Vec3& start, const Vec3& dir0,
+                 const core::BandArray& energy0) const {
+    Vec3 pos = start, dir = dir0;
+    core::BandArray e = energy0;
+    double path_m = 0.0;
+    int order = 0;
+    bool specular_chain = true;
+    const double e_start = *std::max_element(e.begin(), e.begin() + bands);
+    const geometry::Intersector& isect = geometry.intersector();
+    double tnear = 0.0;
+    for (;;) {
+      const geometry::Hit hit = isect.intersect(geometry::Ray{pos, dir, tnear, 1e300});
+      ++acc.segments;
+      double t_hit = 1e300;
+      if (hit.valid()) {
+        t_hit = geometry.planeDistance(hit.triangle, pos, dir);
+        if (!(t_hit > 0.0 && t_hit < 1e300)) t_hit = hit.t;
+      }
+      const double remaining = max_path_m - path_m;
+      const double t_end = std::min(t_hit, remaining);
+      score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order);
+      if (!hit.valid()) {
+        ++acc.escaped;
+        return;
+      }
+      if (t_hit >= remaining) {
+        ++acc.timed_out;
+        return;
+      }
+      path_m += t_hit;
+      pos += t_hit * dir;
+      const TrianglePlane& tri = geometry.triangle(hit.triangle);
+      const int m = tri.material;
+      const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
+      if (materials.opening[m]) {  // a hole: go on as if nothing were there
+        pos -= eps_m * n_in;
+        tnear = eps_m;
+        continue;
+      }
+      // Reflect or transmit, with energy-weighted mean probabilities; per-band reweighting keeps every
+      // band unbiased (E[e_b'] = e_b·((1 − α_b) + τ_b)).
+      const core::BandArray& refl = materials.reflect[m];
+      const core::BandArray& trans = materials.transmit[m];
+      double sum_e = 0.0, sum_r = 0.0, sum_t = 0.0;
+      for (int b = 0; b < bands; ++b) {
+        sum_e += e[b];
+        sum_r += e[b] * refl[b];
+        sum_t += e[b] * trans[b];
+      }
+      if (!(sum_r + sum_t > 0.0) || !(sum_e > 0.0)) return;  // fully absorbed
+      const double p_reflect = sum_r / (sum_r + sum_t);
+      ++order;
+      if (rng.uniform() < p_reflect) {
+        const core::BandArray& scat = materials.scatter[m];
+        double sum_rs = 0.0;
+        for (int b = 0; b < bands; ++b) {
+          e[b] *= refl[b] / p_reflect;
+          sum_rs += e[b] * scat[b];
+        }
+        double sum_re = 0.0;
+        for (int b = 0; b < bands; ++b) sum_re += e[b];
+        const double p_diffuse = sum_re > 0.0 ? sum_rs / sum_re : 0.0;
+        if (p_diffuse > 0.0 && rng.uniform() < p_diffuse) {
+          for (int b = 0; b < bands; ++b) e[b] *= scat[b] / p_diffuse;
+          const double u1 = rng.uniform(), u2 = rng.uniform();
+          dir = sampleLambert(n_in, u1, u2);
+          specular_chain = false;
+        } else {
+          if (p_diffuse > 0.0)
+            for (int b = 0; b < bands; ++b) e[b] *= (1.0 - scat[b]) / (1.0 - p_diffuse);
+          dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
+        }
+        pos += eps_m * n_in;  // off the surface, on the side the ray now travels
+      } else {
+        for (int b = 0; b < bands; ++b) e[b] *= trans[b] / (1.0 - p_reflect);
+        specular_chain = false;
+        pos -= eps_m * n_in;
+      }
+      tnear = eps_m;
+      // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
+      // probability). The level is an upper bound of the air-attenuated one (the weakest air absorption
+      // for every band): one exp per bounce instead of one per band, at the price of a few more bounces.
+      double level = 0.0;
+      for (int b = 0; b < bands; ++b) level = std::max(level, e[b]);
+      level *= std::exp(-air_min * path_m);
+      const double threshold = opt.roulette_level * e_start;
+      if (level < threshold) {
+        const double q = level / threshold;
+        if (!(rng.uniform() < q)) {
+          ++acc.roulette_killed;
+          return;
+        }
+        for (int b = 0; b < bands; ++b) e[b] /= q;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, int source_index,
+                          const RoomTraceOptions& options) {
+  if (source_index < 0 || source_index >= static_cast<int>(room.sources.size()))
+    throw core::InternalError("traceRoom: no such source");
+  core::requirePositive("length", options.length_s);
+  core::requirePositive("histogram bin", options.bin_s);
+  core::requirePositive("speed of sound", options.speed_of_sound_m_s);
+  if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
+  const auto t0 = std::chrono::steady_clock::now();
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, 0.0};
+  for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
+  tr.bins = core::checkedCount("IR length / histogram bin", options.length_s / options.bin_s, 1e7);
+  const room::Source& src = room.sources[source_index];
+  tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
+  tr.max_path_m = options.length_s * options.speed_of_sound_m_s;
+  tr.eps_m = 1e-7 * geometry.extent();
+  tr.air_min = *std::min_element(options.air_m_per_m.begin(), options.air_m_per_m.begin() + tr.bands);
+  const Vec3 axis = src.directivity.axis.normalized();
+
+  auto make = [&] {
+    RoomTraceResult r;
+    r.listeners.assign(room.listeners.size(), receiver::EnergyHistogram(tr.bands, tr.bins, options.bin_s));
+    r.crossings.assign(room.listeners.size(), 0);
+    return r;
+  };
+  auto body = [&](RoomTraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
+    core::ChunkSampler sampler(rng, kGenerators, 2, true);
+    for (std::uint64_t i = begin; i < end; ++i) {
+      int dim = 0;
+      const double z = 1.0 - 2.0 * sampler.next(i - begin, dim);
+      const double phi = core::kTwoPi * sampler.next(i - begin, dim);
+      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const Vec3 dir(r * std::cos(phi), r * std::sin(phi), z);
+      const double gain = src.directivity.a == 1.0 ? 1.0 : directivityGain(src.directivity, dir.dot(axis));
+      core::BandArray e = core::bandFill(0.0);
+      for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain;
+      tr.tracePath(acc, rng, src.position_m, dir, e);
+    }
+    acc.rays += end - begin;
+    for (auto& h : acc.listeners) h.closeChunk();
+  };
+  auto on_chunk = [&](std::uint64_t n) {
+    if (options.on_progress) options.on_progress(n);
+  };
+  RoomTraceResult result =
+      core::deterministicReduce<RoomTraceResult>(options.rays, options.chunk_rays, options.seed, make, body, on_chunk);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace diffray::transport
