@@ -46,6 +46,7 @@ nlohmann::json toJson(const validate::CaseResult& r) {
   j["negative_energy_fraction"] = r.negative_energy_fraction;
   j["target_rel_peak"] = r.target_rel_peak;
   j["passed"] = r.passed;
+  if (!r.detail.empty()) j["detail"] = r.detail;
   for (const auto& [k, v] : r.extra) j["extra"][k] = v;
   return j;
 }
@@ -61,13 +62,15 @@ void writeCsv(const std::string& path, const std::vector<validate::CaseResult>& 
 }
 
 void printTable(const std::vector<validate::CaseResult>& results, bool verbose) {
-  std::printf("%-16s %10s %8s %12s %12s %12s %10s  %s\n", "case", "rays", "seconds", "max err %pk",
-              "rms err %pk", "noise %pk", "neg. frac", "result");
+  std::printf("%-16s %10s %8s %12s %12s %12s %10s  %s\n", "case", "rays", "seconds", "max err %",
+              "rms err %", "noise %", "neg. frac", "result");
   for (const auto& r : results)
     std::printf("%-16s %10llu %8.2f %12.3f %12.3f %12.3f %10.4f  %s\n", r.name.c_str(),
                 static_cast<unsigned long long>(r.rays), r.seconds, 100 * r.max_abs_error_rel_peak,
                 100 * r.rms_error_rel_peak, 100 * r.max_std_error_rel_peak, r.negative_energy_fraction,
                 r.passed ? "pass" : "MISSED target");
+  for (const auto& r : results)
+    if (!r.detail.empty()) std::printf("%s: %s\n", r.name.c_str(), r.detail.c_str());
   for (const auto& r : results)
     if (verbose && r.extra.size()) {
       std::printf("%s:", r.name.c_str());

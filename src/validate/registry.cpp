@@ -14,10 +14,13 @@ CaseInfo rectApertureCase();
 CaseInfo slitFresnelCase();
 CaseInfo doorRsCase();
 CaseInfo gratingOrdersCase();
+CaseInfo freeFieldCase();
+CaseInfo shoeboxIsmCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
-                                         slitFresnelCase(),    doorRsCase(),     gratingOrdersCase()};
+                                         slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
+                                         freeFieldCase(),      shoeboxIsmCase(), };
   return all;
 }
 

@@ -42,6 +42,7 @@ struct CaseResult {
   bool passed = false;
   std::vector<Row> rows;
   std::map<std::string, double> extra;  ///< case-specific figures (energy balance, per-frequency errors)
+  std::string detail;  ///< one line on what was compared, for cases whose errors are not "% of a peak"
 };
 
 struct RunOptions {
