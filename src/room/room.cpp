@@ -1,5 +1,7 @@
 #include "diffray/room/room.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "diffray/core/error.h"
@@ -13,6 +15,47 @@ double cornerSign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n) { 
 bool insideTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n) {
   return (b - a).cross(p - a).dot(n) >= 0.0 && (c - b).cross(p - b).dot(n) >= 0.0 &&
          (a - c).cross(p - c).dot(n) >= 0.0;
+}
+
+// Whether 2D segments pq and rs intersect (touching counts), by orientation signs.
+bool segmentsMeet(const double p[2], const double q[2], const double r[2], const double s[2]) {
+  const auto orient = [](const double a[2], const double b[2], const double c[2]) {
+    const double v = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    return (v > 0) - (v < 0);
+  };
+  const auto within = [](const double a[2], const double b[2], const double c[2]) {  // c on segment ab
+    return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+           c[1] <= std::max(a[1], b[1]);
+  };
+  const int o1 = orient(p, q, r), o2 = orient(p, q, s), o3 = orient(r, s, p), o4 = orient(r, s, q);
+  if (o1 != o2 && o3 != o4) return true;
+  return (o1 == 0 && within(p, q, r)) || (o2 == 0 && within(p, q, s)) || (o3 == 0 && within(r, s, p)) ||
+         (o4 == 0 && within(r, s, q));
+}
+
+// Checks that a polygon with unit normal n is planar and simple (no two non-adjacent edges meet),
+// which ear clipping assumes but would not notice.
+void requireSimplePlanar(const std::vector<Vec3>& v, const Vec3& n, const std::string& group) {
+  double extent = 0.0;
+  for (const auto& p : v) extent = std::max(extent, (p - v[0]).norm());
+  for (const auto& p : v)
+    if (std::abs((p - v[0]).dot(n)) > 1e-6 * extent)
+      throw core::InputError(group, "the polygon is not planar");
+  // Project on the coordinate plane most nearly parallel to the polygon.
+  int drop = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(n[i]) > std::abs(n[drop])) drop = i;
+  const int a = (drop + 1) % 3, b = (drop + 2) % 3;
+  std::vector<std::array<double, 2>> q(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) q[i] = {v[i][a], v[i][b]};
+  const std::size_t m = v.size();
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = i + 2; j < m; ++j) {
+      if (i == 0 && j == m - 1) continue;  // adjacent through the closing edge
+      if (segmentsMeet(q[i].data(), q[(i + 1) % m].data(), q[j].data(), q[(j + 1) % m].data()))
+        throw core::InputError(group, "the polygon is self-intersecting (edges " + std::to_string(i + 1) + " and " +
+                                          std::to_string(j + 1) + " meet)");
+    }
 }
 
 }  // namespace
@@ -44,6 +87,7 @@ void Room::addPolygon(const std::vector<Vec3>& vertices, int material, const std
   for (std::size_t i = 0; i < vertices.size(); ++i) n += vertices[i].cross(vertices[(i + 1) % vertices.size()]);
   if (!(n.norm() > 1e-12)) throw core::InputError(group, "the polygon has no area (collinear or repeated vertices)");
   n.normalize();
+  requireSimplePlanar(vertices, n, group);
   // Ear clipping, O(n²) per ear: polygons in scene files are small.
   std::vector<int> idx(vertices.size());
   const int base = static_cast<int>(mesh.vertices.size());
@@ -74,10 +118,39 @@ void Room::addPolygon(const std::vector<Vec3>& vertices, int material, const std
   group_of_triangle.push_back(group);
 }
 
+bool Room::isOpening(int m) const {
+  for (int b = 0; b < bands.size(); ++b)
+    if (materials[m].transmission[b] < 1.0) return false;
+  return true;
+}
+
+std::vector<char> Room::enclosure() const {
+  std::vector<char> all(mesh.triangles.size(), 1), walls(mesh.triangles.size(), 1);
+  Vec3 area_all(0, 0, 0), area_walls(0, 0, 0);
+  bool any_opening = false;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const Vec3 a = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    area_all += a;
+    if (isOpening(mesh.object_of_triangle[i])) {
+      walls[i] = 0;
+      any_opening = true;
+    } else {
+      area_walls += a;
+    }
+  }
+  if (!any_opening) return all;
+  return area_walls.norm() <= area_all.norm() ? walls : all;
+}
+
 double Room::volume() const {
+  const std::vector<char> bounding = enclosure();
   double v6 = 0.0;
-  for (const auto& t : mesh.triangles)
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (!bounding[i]) continue;
+    const auto& t = mesh.triangles[i];
     v6 += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
   return std::abs(v6) / 6.0;
 }
 

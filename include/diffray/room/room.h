@@ -90,7 +90,16 @@ struct Room {
   void addBox(const Vec3& lo, const Vec3& hi, const int material_of_wall[6], const std::string& group = "box");
   /// Adds a planar convex or concave simple polygon (vertices in order), fan-free ear-clipping triangulation.
   void addPolygon(const std::vector<Vec3>& vertices, int material, const std::string& group);
-  /// Volume (m³, by the divergence theorem; meaningful for a closed mesh) and total surface area (m²).
+  /// Whether material `m` transmits everything in every band (an opening such as an open doorway):
+  /// such surfaces are not part of the enclosure.
+  bool isOpening(int m) const;
+  /// Which triangles bound the enclosed air (1) or not (0): every triangle but the openings, unless
+  /// the openings are needed to close it (an open window to the outside): of the two sets, the one
+  /// whose vector area Σ n·dA is nearer zero, as it is for a closed surface (the condition for the
+  /// volume's divergence sum not to depend on the origin). A doorway between two rooms is left out.
+  std::vector<char> enclosure() const;
+  /// Volume (m³, by the divergence theorem over enclosure(); meaningful for a closed mesh) and total
+  /// surface area (m², openings included).
   double volume() const;
   double surfaceArea() const;
 };

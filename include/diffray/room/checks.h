@@ -1,0 +1,27 @@
+#pragma once
+// Geometric sanity checks of a room, reported as warnings (the run goes on; the tracer measures the
+// energy a leak actually loses): an open mesh, sources and listeners outside the enclosure, a listener
+// sphere cut by a surface, a source closer than 1 cm to a surface. The edge count and the inside test
+// use Room::enclosure(): an opening between two rooms is left out, one that closes the room (an open
+// window to the outside) is kept, so neither counts as a hole. Brute force over the triangles: meant
+// for scene loading, not for tracing.
+// Free functions on a const Room; thread-safe.
+#include <string>
+#include <vector>
+
+#include "diffray/room/room.h"
+
+namespace diffray::room {
+
+/// Edges (after welding vertices closer than 1e-6 of the scene size) used by exactly one triangle of
+/// Room::enclosure().
+int openEdgeCount(const Room& room);
+/// Whether `p` is inside the enclosure: the parity of crossings along three fixed directions, majority.
+bool insideRoom(const Room& room, const core::Vec3& p);
+/// The distance (m) from `p` to the nearest triangle, openings included; +inf for an empty mesh.
+double distanceToSurface(const Room& room, const core::Vec3& p);
+
+/// One line per problem found (empty when none).
+std::vector<std::string> roomWarnings(const Room& room);
+
+}  // namespace diffray::room
