@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "diffray/core/math.h"
+#include "diffray/core/rng.h"
 
 namespace dc = diffray::core;
 
@@ -21,4 +22,31 @@ TEST(GaussLegendre, IntegratesPolynomialsExactly) {
 
 TEST(GaussLegendre, CompositeRuleIntegratesSine) {
   EXPECT_NEAR(dc::integrate([](double x) { return std::sin(x); }, 0.0, dc::kPi, 4), 2.0, 1e-13);
+}
+
+TEST(FastRng, MatchesTheReferenceXoshiro256StarStarSequence) {
+  // The first outputs of the authors' xoshiro256** from the state {1, 2, 3, 4} (computed here by hand for
+  // the first two: rotl(2·5, 7)·9 = 11520, and s[1] = 0 after one step).
+  diffray::core::FastRng r(1, 2, 3, 4);
+  EXPECT_EQ(r.next(), 11520u);
+  EXPECT_EQ(r.next(), 0u);
+  EXPECT_EQ(r.next(), 1509978240u);
+  EXPECT_EQ(r.next(), 1215971899390074240u);
+}
+
+TEST(StatFastRng, UniformsHaveTheMomentsOfU01) {
+  diffray::core::Rng seeder(5, 0);
+  diffray::core::FastRng r(seeder);
+  const int n = 1'000'000;
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = r.uniform();
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    sum += u;
+    sum2 += u * u;
+  }
+  // Mean 1/2 (σ = √(1/12/n)), second moment 1/3 (σ = √(4/45/n)): 5σ.
+  EXPECT_NEAR(sum / n, 0.5, 5 * std::sqrt(1.0 / 12 / n));
+  EXPECT_NEAR(sum2 / n, 1.0 / 3, 5 * std::sqrt(4.0 / 45 / n));
 }

@@ -2,6 +2,7 @@
 // measured in the same run (tools/bench runs it).
 //   transport:   diffray's signed-energy tracer vs a plain rtcIntersect1 loop over the same scene, with the
 //                same number of intersection queries per path and the same thread count.
+//   room:        the acoustic tracer vs a plain rtcIntersect1 loop on each shipped room (room_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
 #include <embree3/rtcore.h>
@@ -13,7 +14,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "room_bench.h"
+
 #include "diffray/core/parallel.h"
+#include "diffray/room/scene_file.h"
 #include "diffray/transport/tracer.h"
 #include "diffray/validate/case.h"
 #include "diffray/wbsdf/microstructure.h"
@@ -180,6 +184,13 @@ int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "all";
   try {
     if (which == "all" || which == "transport") benchTransport(8'000'000);
+    if (which == "all" || which == "room") {
+      // The shipped rooms, from the source folder (DIFFRAY_SOURCE_DIR) or the working directory.
+      for (const char* name : {"shoebox", "l-hall", "two-rooms"}) {
+        const std::string path = std::string(DIFFRAY_BENCH_ROOMS) + "/" + name + ".json";
+        bench::benchRoom(room::loadRoom(path), name, 200'000);
+      }
+    }
     if (which == "all" || which == "convergence") {
       benchConvergence("slit-fraunhofer", false);
       benchConvergence("slit-fraunhofer", true);

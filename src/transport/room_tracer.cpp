@@ -40,28 +40,45 @@ namespace {
 // it decides the early reflections, where QMC pays; bounces use the chunk's Rng.
 constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
 
-// Per-material coefficients in flat arrays, looked up at every bounce.
+// Per material, the event probabilities (band means, fixed) and the per-band weights that keep every band
+// unbiased for them: E[e_b'] = e_b·(p_r·(1 − α_b)/p_r + p_t·τ_b/p_t) = e_b·((1 − α_b) + τ_b), and likewise
+// for the split of a reflection into Lambert (s_b/p_s) and specular ((1 − s_b)/(1 − p_s)) parts. Fixed
+// probabilities cost no reduction or division per bounce (the tracer's hot path).
 struct MaterialTable {
-  std::vector<core::BandArray> reflect, transmit, scatter;
+  std::vector<double> p_reflect, p_diffuse;
+  std::vector<core::BandArray> w_transmit, w_diffuse, w_specular;  ///< reflection weight included
   std::vector<char> opening;  ///< τ = 1 in every band: a hole, not a surface (never an event)
+  std::vector<char> absorbing;  ///< nothing reflected or transmitted in any band
 };
 
 MaterialTable makeMaterials(const room::Room& room) {
   MaterialTable t;
   const int nb = room.bands.size();
   for (const room::Material& m : room.materials) {
-    core::BandArray r = core::bandFill(0.0), tr = core::bandFill(0.0), sc = core::bandFill(0.0);
+    double mean_r = 0, mean_t = 0, mean_rs = 0;
     bool open = true;
     for (int b = 0; b < nb; ++b) {
-      r[b] = 1.0 - m.absorption[b];
-      tr[b] = m.transmission[b];
-      sc[b] = m.scattering[b];
+      mean_r += (1.0 - m.absorption[b]) / nb;
+      mean_t += m.transmission[b] / nb;
+      mean_rs += (1.0 - m.absorption[b]) * m.scattering[b] / nb;
       open = open && m.transmission[b] >= 1.0 - 1e-12;
     }
-    t.reflect.push_back(r);
-    t.transmit.push_back(tr);
-    t.scatter.push_back(sc);
+    const double p_r = mean_r + mean_t > 0 ? mean_r / (mean_r + mean_t) : 1.0;
+    const double p_s = mean_r > 0 ? mean_rs / mean_r : 0.0;  // reflected-energy-weighted mean scattering
+    core::BandArray wt = core::bandFill(0.0), wd = core::bandFill(0.0), ws = core::bandFill(0.0);
+    for (int b = 0; b < nb; ++b) {
+      const double r = (1.0 - m.absorption[b]) / p_r;
+      wt[b] = p_r < 1.0 ? m.transmission[b] / (1.0 - p_r) : 0.0;
+      wd[b] = p_s > 0.0 ? r * m.scattering[b] / p_s : 0.0;
+      ws[b] = p_s < 1.0 ? r * (1.0 - m.scattering[b]) / (1.0 - p_s) : 0.0;
+    }
+    t.p_reflect.push_back(p_r);
+    t.p_diffuse.push_back(p_s);
+    t.w_transmit.push_back(wt);
+    t.w_diffuse.push_back(wd);
+    t.w_specular.push_back(ws);
     t.opening.push_back(open ? 1 : 0);
+    t.absorbing.push_back(mean_r + mean_t > 0 ? 0 : 1);
   }
   return t;
 }
@@ -99,7 +116,6 @@ struct Tracer {
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
   double eps_m = 0.0;
-  double air_min = 0.0;  ///< smallest air attenuation over the bands (1/m)
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored.
@@ -120,7 +136,7 @@ struct Tracer {
     }
   }
 
-  void tracePath(RoomTraceResult& acc, core::Rng& rng, const Vec3& start, const Vec3& dir0,
+  void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
                  const core::BandArray& energy0) const {
     Vec3 pos = start, dir = dir0;
     core::BandArray e = energy0;
@@ -133,11 +149,7 @@ struct Tracer {
     for (;;) {
       const geometry::Hit hit = isect.intersect(geometry::Ray{pos, dir, tnear, 1e300});
       ++acc.segments;
-      double t_hit = 1e300;
-      if (hit.valid()) {
-        t_hit = geometry.planeDistance(hit.triangle, pos, dir);
-        if (!(t_hit > 0.0 && t_hit < 1e300)) t_hit = hit.t;
-      }
+      const double t_hit = hit.valid() ? hit.t : 1e300;
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
       score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order);
@@ -151,7 +163,10 @@ struct Tracer {
       }
       path_m += t_hit;
       pos += t_hit * dir;
+      // Embree's distance is float: put the point back on the triangle's plane in double (a projection
+      // along the normal: no division in the hot loop; the path length is off by ~1e-7 of the extent).
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
+      pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (materials.opening[m]) {  // a hole: go on as if nothing were there
@@ -159,52 +174,37 @@ struct Tracer {
         tnear = eps_m;
         continue;
       }
-      // Reflect or transmit, with energy-weighted mean probabilities; per-band reweighting keeps every
-      // band unbiased (E[e_b'] = e_b·((1 − α_b) + τ_b)).
-      const core::BandArray& refl = materials.reflect[m];
-      const core::BandArray& trans = materials.transmit[m];
-      double sum_e = 0.0, sum_r = 0.0, sum_t = 0.0;
-      for (int b = 0; b < bands; ++b) {
-        sum_e += e[b];
-        sum_r += e[b] * refl[b];
-        sum_t += e[b] * trans[b];
-      }
-      if (!(sum_r + sum_t > 0.0) || !(sum_e > 0.0)) return;  // fully absorbed
-      const double p_reflect = sum_r / (sum_r + sum_t);
+      // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
+      // per-band weights (MaterialTable).
+      if (materials.absorbing[m]) return;
       ++order;
-      if (rng.uniform() < p_reflect) {
-        const core::BandArray& scat = materials.scatter[m];
-        double sum_rs = 0.0;
-        for (int b = 0; b < bands; ++b) {
-          e[b] *= refl[b] / p_reflect;
-          sum_rs += e[b] * scat[b];
-        }
-        double sum_re = 0.0;
-        for (int b = 0; b < bands; ++b) sum_re += e[b];
-        const double p_diffuse = sum_re > 0.0 ? sum_rs / sum_re : 0.0;
-        if (p_diffuse > 0.0 && rng.uniform() < p_diffuse) {
-          for (int b = 0; b < bands; ++b) e[b] *= scat[b] / p_diffuse;
+      const double p_reflect = materials.p_reflect[m];
+      if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
+        const double p_diffuse = materials.p_diffuse[m];
+        if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
+          const core::BandArray& w = materials.w_diffuse[m];
+          for (int b = 0; b < bands; ++b) e[b] *= w[b];
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
           specular_chain = false;
         } else {
-          if (p_diffuse > 0.0)
-            for (int b = 0; b < bands; ++b) e[b] *= (1.0 - scat[b]) / (1.0 - p_diffuse);
+          const core::BandArray& w = materials.w_specular[m];
+          for (int b = 0; b < bands; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
-        for (int b = 0; b < bands; ++b) e[b] *= trans[b] / (1.0 - p_reflect);
+        const core::BandArray& w = materials.w_transmit[m];
+        for (int b = 0; b < bands; ++b) e[b] *= w[b];
         specular_chain = false;
         pos -= eps_m * n_in;
       }
       tnear = eps_m;
       // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
-      // probability). The level is an upper bound of the air-attenuated one (the weakest air absorption
-      // for every band): one exp per bounce instead of one per band, at the price of a few more bounces.
+      // probability). The level leaves air absorption out (it is applied at scoring): an upper bound of the
+      // attenuated level, so rays live a little longer at high frequencies, and no exp per bounce.
       double level = 0.0;
       for (int b = 0; b < bands; ++b) level = std::max(level, e[b]);
-      level *= std::exp(-air_min * path_m);
       const double threshold = opt.roulette_level * e_start;
       if (level < threshold) {
         const double q = level / threshold;
@@ -229,14 +229,14 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, 0.0};
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0};
   for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
   tr.bins = core::checkedCount("IR length / histogram bin", options.length_s / options.bin_s, 1e7);
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
   tr.max_path_m = options.length_s * options.speed_of_sound_m_s;
-  tr.eps_m = 1e-7 * geometry.extent();
-  tr.air_min = *std::min_element(options.air_m_per_m.begin(), options.air_m_per_m.begin() + tr.bands);
+  tr.eps_m = 1e-6 * geometry.extent();  // 15× the float rounding of a coordinate: no self-hits
+
   const Vec3 axis = src.directivity.axis.normalized();
 
   auto make = [&] {
@@ -247,6 +247,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   };
   auto body = [&](RoomTraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
     core::ChunkSampler sampler(rng, kGenerators, 2, true);
+    core::FastRng fast(rng);  // the bounces' uniforms
     for (std::uint64_t i = begin; i < end; ++i) {
       int dim = 0;
       const double z = 1.0 - 2.0 * sampler.next(i - begin, dim);
@@ -256,7 +257,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
       const double gain = src.directivity.a == 1.0 ? 1.0 : directivityGain(src.directivity, dir.dot(axis));
       core::BandArray e = core::bandFill(0.0);
       for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain;
-      tr.tracePath(acc, rng, src.position_m, dir, e);
+      tr.tracePath(acc, fast, src.position_m, dir, e);
     }
     acc.rays += end - begin;
     for (auto& h : acc.listeners) h.closeChunk();

@@ -27,6 +27,36 @@ class Rng {
 
 namespace diffray::core {
 
+/// xoshiro256** (Blackman & Vigna 2018): a small, fast generator for hot loops that draw a few uniforms
+/// per step (the room tracer's bounces). Seeded from an Rng, so it inherits the (seed, stream)
+/// reproducibility of core::Rng. Not thread-safe: one per chunk.
+class FastRng {
+ public:
+  explicit FastRng(Rng& seeder) {
+    for (auto& w : s_) w = seeder.next();
+    if ((s_[0] | s_[1] | s_[2] | s_[3]) == 0) s_[0] = 1;  // the all-zero state is a fixed point
+  }
+  /// An explicit state (not all zero), for the published test vectors.
+  FastRng(std::uint64_t s0, std::uint64_t s1, std::uint64_t s2, std::uint64_t s3) : s_{s0, s1, s2, s3} {}
+  std::uint64_t next() {
+    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+    const std::uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = rotl(s_[3], 45);
+    return result;
+  }
+  /// Uniform in [0, 1).
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+ private:
+  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::uint64_t s_[4];
+};
+
 /// Uniforms for the rays of one chunk. With qmc, a ray's first `dims` uniforms come from a randomly
 /// shifted Kronecker lattice (point j = frac(shift + j·α) with the caller's generators α, irrationals
 /// independent over the rationals) and later ones from the chunk's Rng: randomised quasi-Monte Carlo, so

@@ -2,10 +2,10 @@
 // The acoustic ray tracer (issue 2/5 rooms). A ray leaves a point source in a direction drawn uniformly
 // on the sphere, weighted by the source's normalised power pattern, and carries one energy per band at
 // once (core::BandArray). At a surface it is reflected or transmitted with probabilities proportional to
-// the energy-weighted mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert
-// (cosine lobe) with the energy-weighted mean scattering probability s, else specular; the band energies
-// are reweighted by the per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF
-// occluder, next issue, is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1)
+// the band-mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert (cosine lobe)
+// with the band-mean scattering probability, else specular; the band energies are reweighted by the
+// per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF occluder, next issue,
+// is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1)
 // is applied along the path; Russian roulette below `roulette_level` of the emitted energy keeps the
 // estimator unbiased. Listener spheres score the track length inside them (receiver/sphere.h) into band ×
 // time histograms, time = path length / c.
