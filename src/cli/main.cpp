@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   diffray::cli::CommonOptions common;
   diffray::cli::Runner validate = diffray::cli::addValidateCommand(app, common);
   diffray::cli::Runner wdf = diffray::cli::addWdfCommand(app, common);
+  diffray::cli::Runner metrics = diffray::cli::addMetricsCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("validate")) return validate();
     if (app.got_subcommand("wdf")) return wdf();
+    if (app.got_subcommand("metrics")) return metrics();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

@@ -14,10 +14,12 @@ CaseInfo rectApertureCase();
 CaseInfo slitFresnelCase();
 CaseInfo doorRsCase();
 CaseInfo gratingOrdersCase();
+CaseInfo decayMetricsCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
-                                         slitFresnelCase(),    doorRsCase(),     gratingOrdersCase()};
+                                         slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
+                                         decayMetricsCase()};
   return all;
 }
 

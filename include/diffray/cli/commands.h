@@ -18,5 +18,6 @@ struct CommonOptions {
 
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
 Runner addWdfCommand(CLI::App& app, CommonOptions& common);
+Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli
