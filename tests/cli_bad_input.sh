@@ -50,6 +50,16 @@ expect_error "x not increasing"       wdf profile --profile "$tmp/dup.csv"
 printf 'x,a,phi\n0,1,0\n1e-3,nan,0\n' >"$tmp/nan.csv"
 expect_error "NaN in a profile"       wdf profile --profile "$tmp/nan.csv"
 expect_error "wdf CSV to nowhere"     wdf slit --csv "$tmp/no/such/dir/w.csv"
+expect_error "missing IR file"        metrics "$tmp/none.wav"
+printf 'not audio\n' >"$tmp/text.wav"
+expect_error "text file named .wav"   metrics "$tmp/text.wav"
+# A 32-bit float WAV (format 3) holding 1.0 and NaN, byte by byte.
+printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00\x00\x00\xee\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\xc0\x7f' >"$tmp/nan.wav"
+expect_error "NaN in a WAV"           metrics "$tmp/nan.wav"
+printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00\x00\x00\xee\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok.wav"
+expect_error "channel 0"              metrics "$tmp/ok.wav" --channel 0
+expect_error "channel past the last"  metrics "$tmp/ok.wav" --channel 2
+expect_error "unknown band kind"      metrics "$tmp/ok.wav" --bands fifth
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

@@ -11,8 +11,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("diffray ") + DIFFRAY_VERSION);
   app.require_subcommand(1);
   diffray::cli::CommonOptions common;
+  diffray::cli::Runner ir = diffray::cli::addIrCommand(app, common);
   diffray::cli::Runner validate = diffray::cli::addValidateCommand(app, common);
   diffray::cli::Runner wdf = diffray::cli::addWdfCommand(app, common);
+  diffray::cli::Runner metrics = diffray::cli::addMetricsCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -26,8 +28,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    if (app.got_subcommand("ir")) return ir();
     if (app.got_subcommand("validate")) return validate();
     if (app.got_subcommand("wdf")) return wdf();
+    if (app.got_subcommand("metrics")) return metrics();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

@@ -89,15 +89,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       "validate", "Compare traced diffraction with closed-form and quadrature references." + case_list +
                       "\n  all: every case, as a table");
   sub->add_option("case", opts->case_name, "case name, or all")->required();
-  sub->add_option_function<double>(
-         "--rays",
-         [opts](double v) {
-           if (!(v >= 1 && v <= 1e13 && std::floor(v) == v))
-             throw CLI::ValidationError("--rays", "must be a whole number >= 1 (e.g. 2000000 or 2e6)");
-           opts->rays = static_cast<std::uint64_t>(v);
-         },
-         "rays per case (default: the case's own; 2e6 is accepted)")
-      ->type_name("N");
+  addRaysOption(sub, opts->rays, "rays per case (default: the case's own; 2e6 is accepted)");
   sub->add_option("--seed", common.seed, "random seed; the same seed gives the same result")
       ->capture_default_str();
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();

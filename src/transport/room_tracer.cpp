@@ -145,11 +145,18 @@ struct Tracer {
     bool specular_chain = true;
     const double e_start = *std::max_element(e.begin(), e.begin() + bands);
     const geometry::Intersector& isect = geometry.intersector();
-    double tnear = 0.0;
     for (;;) {
-      const geometry::Hit hit = isect.intersect(geometry::Ray{pos, dir, tnear, 1e300});
+      // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
+      // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
+      const geometry::Hit hit = isect.intersect(geometry::Ray{pos, dir, 0.0, 1e300});
       ++acc.segments;
-      const double t_hit = hit.valid() ? hit.t : 1e300;
+      // Embree's distance is float; refined in double on the triangle's plane, so a hit within float
+      // rounding of a corner does not land outside the neighbouring wall (that lets rays slip out).
+      double t_hit = 1e300;
+      if (hit.valid()) {
+        t_hit = geometry.planeDistance(hit.triangle, pos, dir);
+        if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
+      }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
       score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order);
@@ -163,15 +170,11 @@ struct Tracer {
       }
       path_m += t_hit;
       pos += t_hit * dir;
-      // Embree's distance is float: put the point back on the triangle's plane in double (a projection
-      // along the normal: no division in the hot loop; the path length is off by ~1e-7 of the extent).
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
-      pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (materials.opening[m]) {  // a hole: go on as if nothing were there
         pos -= eps_m * n_in;
-        tnear = eps_m;
         continue;
       }
       // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
@@ -199,7 +202,6 @@ struct Tracer {
         specular_chain = false;
         pos -= eps_m * n_in;
       }
-      tnear = eps_m;
       // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
       // probability). The level leaves air absorption out (it is applied at scoring): an upper bound of the
       // attenuated level, so rays live a little longer at high frequencies, and no exp per bounce.

@@ -16,11 +16,15 @@ CaseInfo doorRsCase();
 CaseInfo gratingOrdersCase();
 CaseInfo freeFieldCase();
 CaseInfo shoeboxIsmCase();
+CaseInfo specularDecayCase();
+CaseInfo diffuseEyringCase();
+CaseInfo decayMetricsCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
                                          slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
-                                         freeFieldCase(),      shoeboxIsmCase(), };
+                                         freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
+                                         diffuseEyringCase(),  decayMetricsCase()};
   return all;
 }
 

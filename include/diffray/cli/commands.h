@@ -16,7 +16,12 @@ struct CommonOptions {
   bool json = false;
 };
 
+/// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
+void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
+
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
 Runner addWdfCommand(CLI::App& app, CommonOptions& common);
+Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
+Runner addIrCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

@@ -1,0 +1,82 @@
+#pragma once
+// Zero-phase band splitting by FFT (FFTW r2c/c2r), for the room metrics and the IR synthesis.
+//
+// Contract. Band b's gain W_b(f) is real and non-negative (zero phase: no group delay, so band signals line
+// up in time with the input and with energy histograms). On a log-frequency axis x = log10 f each band edge
+// e carries a raised-cosine crossover of half-width h: the band below falls as ½(1 + cos(π(x − e + h)/2h))
+// over [e − h, e + h] while the band above rises as 1 minus that, so adjacent bands are amplitude
+// complementary and Σ_b W_b(f) = 1 exactly on [coveredLowHz, coveredHighHz] (the outer edges roll off with
+// the same shape). h = crossover × the band's half-width in log f (0 < crossover ≤ 1; 0.5 by default: the
+// middle half of each band is flat). Filtering is a product of spectra on a zero-padded FFT whose length
+// keeps the filters' circular wrap-around negligible (fftLengthFor); outputs have the input's length.
+// Thread-safety: a BandFilter is immutable and may be shared; RealFft objects are one per thread. FFTW plan
+// creation and destruction hold wbsdf::fftwPlannerMutex().
+#include <complex>
+#include <vector>
+
+#include "diffray/core/bands.h"
+
+namespace diffray::ir {
+
+/// A real DFT of fixed length n with its own FFTW plans and buffers. Not thread-safe (one per thread).
+class RealFft {
+ public:
+  explicit RealFft(int n);
+  ~RealFft();
+  RealFft(const RealFft&) = delete;
+  RealFft& operator=(const RealFft&) = delete;
+
+  int size() const { return n_; }
+  int bins() const { return n_ / 2 + 1; }  ///< spectrum length: k = 0 … n/2, frequency k·fs/n
+  /// spectrum[k] = Σ_j x[j]·e^{−2πi·jk/n}, x zero-padded (or truncated) to n.
+  void forward(const std::vector<double>& x, std::vector<std::complex<double>>& spectrum);
+  /// The inverse of forward (scaled by 1/n); returns the first `count` samples.
+  std::vector<double> inverse(const std::vector<std::complex<double>>& spectrum, long count);
+
+ private:
+  int n_;
+  double* real_ = nullptr;
+  void* complex_ = nullptr;  ///< fftw_complex[n/2 + 1]
+  void* forward_plan_ = nullptr;
+  void* inverse_plan_ = nullptr;
+};
+
+/// The smallest length ≥ n whose factors are 2, 3, 5 and 7 only (fast for FFTW).
+int fastFftLength(long n);
+
+/// A band's gains on the spectrum bins of one FFT length: W_b(k·fs/n) for k = first … first + w.size() − 1,
+/// zero elsewhere.
+struct BandGains {
+  int first = 0;
+  std::vector<double> w;
+};
+
+class BandFilter {
+ public:
+  /// Throws core::InputError if the bands are not contiguous, the sample rate is not positive, the top
+  /// crossover reaches the Nyquist frequency, or crossover is outside (0, 1].
+  BandFilter(const core::Bands& bands, double sample_rate_hz, double crossover = 0.5);
+
+  const core::Bands& bands() const { return bands_; }
+  double sampleRateHz() const { return fs_; }
+  /// W_b(freq_hz).
+  double gain(int band, double freq_hz) const;
+  /// Where the bands sum exactly to 1.
+  double coveredLowHz() const;
+  double coveredHighHz() const;
+  /// FFT length for filtering `samples` samples: the input plus enough zeros for the filters' tails
+  /// (6 / the narrowest crossover width in Hz), rounded up to a fast length.
+  int fftLengthFor(long samples) const;
+  BandGains gains(int band, int fft_length) const;
+
+  /// Every band of x: out[b] has x's length.
+  std::vector<std::vector<double>> split(const std::vector<double>& x) const;
+
+ private:
+  core::Bands bands_;
+  double fs_;
+  std::vector<double> edge_log_;  ///< log10 of the band edges: edge b is band b's lower edge
+  std::vector<double> half_log_;  ///< crossover half-width at each edge (log10 units)
+};
+
+}  // namespace diffray::ir

@@ -1,0 +1,68 @@
+#pragma once
+// Room-acoustic metrics per band after ISO 3382-1 (design.md §2), from an energy histogram or from a
+// sampled impulse response, by one rule for both so that the two can be compared.
+//
+// Contract. Energies are in J/m² per bin (for a signal, p[n]² per sample: design.md's convention that
+// Σ p² over a span is its energy). Inside a bin energy is taken as uniform in time. Time zero is the
+// onset: the start of the first bin whose energy exceeds max·10^(−20/10) (ISO 3382-1 A.3.4). The noise
+// floor of measured responses is found by Lundeby et al.'s iterative method (1995; ISO 3382-1 §5.3.3,
+// method described in metrics.cpp): the Schroeder integral E(t) = ∫_t^∞ p² stops at the point where the
+// late decay meets the noise and the energy of the decay's exponential continuation beyond it is added.
+// T20, T30 and EDT are −60 dB over the slope of the least-squares line through the Schroeder curve (dB,
+// sampled at bin edges) from the first time it reaches −5 (EDT: 0) dB to the first time it reaches −25,
+// −35 (EDT: −10) dB; C50, C80 = 10·log10(E(0)/E(t_e) − 1); D50 = 1 − E(50 ms)/E(0); Ts = ∫t p²/∫p² with t
+// from the onset. A figure is NaN when it cannot be measured: the usable decay (decay_range_db, above the
+// noise floor) does not reach the bottom of its fitting range, or nothing arrives after t_e.
+// Free functions, no state: thread-safe.
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "diffray/core/bands.h"
+
+namespace diffray::ir {
+
+struct BandMetrics {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double t20 = kNaN, t30 = kNaN, edt = kNaN;  ///< s
+  double c50 = kNaN, c80 = kNaN;              ///< dB
+  double d50 = kNaN;                          ///< fraction, 0 … 1
+  double ts = kNaN;                           ///< centre time, s after the onset
+  /// How far (dB) the Schroeder curve falls before it ends or meets the noise floor: T20, T30 and EDT need
+  /// 25, 35 and 10 dB.
+  double decay_range_db = kNaN;
+  /// Where the noise truncation stopped the integral, s after the onset (NaN: not truncated).
+  double truncation_s = kNaN;
+};
+
+/// Metrics of one band's energy histogram (J/m² per bin of width bin_s seconds, first bin at time 0).
+/// Throws core::InputError for bin_s ≤ 0 or non-finite energies. All NaN if no energy is positive.
+BandMetrics metricsFromEnergy(const std::vector<double>& energy_per_bin, double bin_s);
+/// The same with time zero at bin `onset` given (e.g. the broadband onset); all NaN if it is out of range.
+BandMetrics metricsFromEnergy(const std::vector<double>& energy_per_bin, double bin_s, long onset);
+/// The onset rule: the first bin whose energy exceeds max·10^(−20/10); −1 if no energy is positive.
+long onsetBin(const std::vector<double>& energy_per_bin);
+
+/// Every band of a response (energy_per_band[b][bin]) with one time zero for all: the onset of the
+/// band-summed histogram, as metricsFromSignal does with the band-summed signal. This is what the
+/// histogram side of a comparison with a synthesized IR should call.
+std::vector<BandMetrics> metricsFromHistograms(const std::vector<std::vector<double>>& energy_per_band,
+                                               double bin_s);
+
+/// Metrics of each band of a sampled impulse response p (Pa-like units, sample 0 at time 0): zero-phase
+/// band filtering (BandFilter), squared, then metricsFromEnergy with one bin per sample, with time zero
+/// at the onset of the band-summed signal (one time zero for every band: see metricsFromHistograms).
+/// Throws core::InputError for non-finite samples, a sample rate ≤ 0, or bands above the Nyquist frequency.
+std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double sample_rate_hz,
+                                           const core::Bands& bands);
+
+/// {"125": {"t20": …, "t30": …, "edt": …, "c50": …, "c80": …, "d50": …, "ts": …, "decay_range_db": …}, …}
+/// keyed by nominal centre; NaN as null.
+nlohmann::json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
+
+/// A text table, one row per band (T20 T30 EDT in s, C50 C80 in dB, D50, Ts in ms, decay range in dB),
+/// "-" where a figure is NaN, followed by a note on why when there is one.
+std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
+
+}  // namespace diffray::ir

@@ -1,0 +1,137 @@
+#include "diffray/audio/wav.h"
+
+#include <sndfile.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <sstream>
+
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+
+namespace diffray::audio {
+
+namespace {
+
+// More samples than this is a mistake (a 2^30-sample file is 8 GiB of doubles), not an impulse response.
+constexpr double kMaxSamples = 1u << 30;
+
+struct SndfileCloser {
+  void operator()(SNDFILE* f) const { sf_close(f); }
+};
+using SndfilePtr = std::unique_ptr<SNDFILE, SndfileCloser>;
+
+/// A growable in-memory file for libsndfile's virtual I/O: the WAV is encoded here first, then handed to
+/// core::writeFileAtomically, so the atomic temporary-and-rename logic lives in one place.
+struct MemoryFile {
+  std::vector<char> bytes;
+  sf_count_t pos = 0;
+
+  static sf_count_t length(void* self) { return static_cast<sf_count_t>(static_cast<MemoryFile*>(self)->bytes.size()); }
+  static sf_count_t seek(sf_count_t offset, int whence, void* self) {
+    auto* m = static_cast<MemoryFile*>(self);
+    const sf_count_t base = whence == SEEK_SET ? 0 : whence == SEEK_CUR ? m->pos : static_cast<sf_count_t>(m->bytes.size());
+    if (base + offset < 0) return -1;
+    m->pos = base + offset;
+    return m->pos;
+  }
+  static sf_count_t read(void* ptr, sf_count_t count, void* self) {
+    auto* m = static_cast<MemoryFile*>(self);
+    const sf_count_t size = static_cast<sf_count_t>(m->bytes.size());
+    const sf_count_t n = std::max<sf_count_t>(0, std::min(count, size - m->pos));
+    if (n > 0) std::memcpy(ptr, m->bytes.data() + m->pos, static_cast<size_t>(n));
+    m->pos += n;
+    return n;
+  }
+  static sf_count_t write(const void* ptr, sf_count_t count, void* self) {
+    auto* m = static_cast<MemoryFile*>(self);
+    const auto end = static_cast<size_t>(m->pos + count);
+    if (end > m->bytes.size()) m->bytes.resize(end);
+    std::memcpy(m->bytes.data() + m->pos, ptr, static_cast<size_t>(count));
+    m->pos += count;
+    return count;
+  }
+  static sf_count_t tell(void* self) { return static_cast<MemoryFile*>(self)->pos; }
+};
+
+std::string sampleWhere(long index, int channels) {
+  std::ostringstream s;
+  s << "frame " << index / channels << ", channel " << index % channels + 1;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<double> AudioBuffer::channel(int c) const {
+  DIFFRAY_CHECK(c >= 0 && c < channels);
+  std::vector<double> out(static_cast<size_t>(frames()));
+  for (size_t f = 0; f < out.size(); ++f) out[f] = samples[f * static_cast<size_t>(channels) + static_cast<size_t>(c)];
+  return out;
+}
+
+AudioBuffer readAudio(const std::string& path) {
+  SF_INFO info;
+  std::memset(&info, 0, sizeof(info));
+  SndfilePtr file(sf_open(path.c_str(), SFM_READ, &info));
+  if (!file) throw core::InputError(path, std::string("cannot read audio: ") + sf_strerror(nullptr));
+  if (info.frames <= 0) throw core::InputError(path, "the audio file holds no frames");
+  if (info.channels <= 0 || info.samplerate <= 0)
+    throw core::InputError(path, "the audio file has no channels or no sample rate");
+  if (static_cast<double>(info.frames) * info.channels > kMaxSamples)
+    throw core::InputError(path, "the audio file is too long (more than 2^30 samples)");
+  AudioBuffer out;
+  out.sample_rate_hz = info.samplerate;
+  out.channels = info.channels;
+  out.samples.resize(static_cast<size_t>(info.frames) * static_cast<size_t>(info.channels));
+  const sf_count_t got = sf_readf_double(file.get(), out.samples.data(), info.frames);
+  if (sf_error(file.get()) != SF_ERR_NO_ERROR)
+    throw core::InputError(path, std::string("cannot read audio: ") + sf_strerror(file.get()));
+  if (got <= 0) throw core::InputError(path, "the audio file holds no frames");
+  out.samples.resize(static_cast<size_t>(got) * static_cast<size_t>(info.channels));
+  for (size_t i = 0; i < out.samples.size(); ++i)
+    if (!std::isfinite(out.samples[i]))
+      throw core::InputError(path, "sample at " + sampleWhere(static_cast<long>(i), out.channels) + " is " +
+                                       (std::isnan(out.samples[i]) ? "NaN" : "infinite"));
+  return out;
+}
+
+void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
+  // Everything is checked before a byte is written.
+  if (audio.channels < 1 || audio.channels > 1024)
+    throw core::InputError(path, "cannot write " + std::to_string(audio.channels) + " channels");
+  if (audio.samples.empty() || audio.samples.size() % static_cast<size_t>(audio.channels) != 0)
+    throw core::InputError(path, "cannot write: the sample count is zero or not a whole number of frames");
+  const double fs = audio.sample_rate_hz;
+  if (!(fs >= 1.0 && fs <= 1e7 && std::floor(fs) == fs))
+    throw core::InputError(path, "cannot write a WAV at a sample rate of " + std::to_string(fs) +
+                                     " Hz (a whole number of Hz is needed)");
+  for (size_t i = 0; i < audio.samples.size(); ++i) {
+    const double v = audio.samples[i];
+    if (!std::isfinite(v) || std::abs(v) > FLT_MAX)
+      throw core::InputError(path, "refusing to write sample at " + sampleWhere(static_cast<long>(i), audio.channels) +
+                                       ": " + (std::isnan(v) ? "NaN" : "not a finite 32-bit float"));
+  }
+
+  MemoryFile memory;
+  SF_VIRTUAL_IO io{&MemoryFile::length, &MemoryFile::seek, &MemoryFile::read, &MemoryFile::write, &MemoryFile::tell};
+  SF_INFO info;
+  std::memset(&info, 0, sizeof(info));
+  info.samplerate = static_cast<int>(fs);
+  info.channels = audio.channels;
+  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  if (!sf_format_check(&info)) throw core::InputError(path, "libsndfile refuses this WAV layout");
+  {
+    SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
+    if (!file) throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(nullptr));
+    const auto frames = static_cast<sf_count_t>(audio.samples.size() / static_cast<size_t>(audio.channels));
+    if (sf_writef_double(file.get(), audio.samples.data(), frames) != frames)
+      throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(file.get()));
+  }  // sf_close writes the final header sizes
+  core::writeFileAtomically(path, [&memory](std::ostream& out) {
+    out.write(memory.bytes.data(), static_cast<std::streamsize>(memory.bytes.size()));
+  });
+}
+
+}  // namespace diffray::audio

