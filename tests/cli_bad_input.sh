@@ -60,6 +60,52 @@ printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00
 expect_error "channel 0"              metrics "$tmp/ok.wav" --channel 0
 expect_error "channel past the last"  metrics "$tmp/ok.wav" --channel 2
 expect_error "unknown band kind"      metrics "$tmp/ok.wav" --bands fifth
+# diffray ir: a bad room file or option gives one line and leaves no WAV, JSON or CSV behind.
+expect_ir_error() {  # expect_ir_error DESCRIPTION ROOM_JSON_TEXT [ARGS...]
+  local what="$1" text="$2"; shift 2
+  printf '%s\n' "$text" >"$tmp/room.json"
+  rm -f "$tmp"/out.*
+  "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" --rays 2000 "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/out.* >/dev/null 2>&1; then
+    echo "FAIL: ir: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+mat='"materials": {"w": {"absorption": 0.3, "scattering": 0.2}}'
+box='"geometry": [{"box": {"min": [0,0,0], "max": [4,3,2.5], "materials": {"all": "w"}}}]'
+src='"sources": [{"position": [1,1,1]}]'
+lis='"listeners": [{"position": [3,2,1.2], "radius_m": 0.2}]'
+good="{$mat, $box, $src, $lis}"
+rm -f "$tmp/room.json"; "$bin" ir "$tmp/nope.json" -o "$tmp/out.wav" >/dev/null 2>"$tmp/stderr"
+if [ $? -eq 2 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && ! ls "$tmp"/out.* >/dev/null 2>&1; then
+  passes=$((passes + 1)); else echo "FAIL: ir: missing room file"; fails=$((fails + 1)); fi
+expect_ir_error "malformed JSON"        "{$mat, $box, $src, $lis"
+expect_ir_error "undefined material"    "{$mat, \"geometry\": [{\"box\": {\"min\": [0,0,0], \"max\": [4,3,2.5], \"materials\": {\"all\": \"nope\"}}}], $src, $lis}"
+expect_ir_error "absorption above 1"    "{\"materials\": {\"w\": {\"absorption\": 1.5, \"scattering\": 0.2}}, $box, $src, $lis}"
+expect_ir_error "infinite coordinate"   "{$mat, $box, \"sources\": [{\"position\": [1e999,1,1]}], $lis}"
+expect_ir_error "null (NaN) coordinate" "{$mat, $box, \"sources\": [{\"position\": [null,1,1]}], $lis}"
+expect_ir_error "missing OBJ"           "{$mat, \"geometry\": [{\"obj\": {\"file\": \"nope.obj\", \"default_material\": \"w\"}}], $src, $lis}"
+expect_ir_error "zero listener radius"  "{$mat, $box, $src, \"listeners\": [{\"position\": [3,2,1.2], \"radius_m\": 0}]}"
+expect_ir_error "no listeners"          "{$mat, $box, $src}"
+expect_ir_error "unknown key"           "{$mat, $box, $src, $lis, \"ouptut\": {}}"
+expect_ir_error "zero rays"             "$good" --rays 0
+expect_ir_error "ISM order out of range" "$good" --ism-order 99
+printf '%s\n' "$good" >"$tmp/room.json"
+expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000
+expect_error "ir: output not a .wav"     ir "$tmp/room.json" -o "$tmp/out.csv" --rays 1000
+
+# A source outside the room is a warning, not an error: the run goes on and writes its outputs.
+printf '%s\n' "{$mat, $box, \"sources\": [{\"position\": [9,1,1]}], $lis}" >"$tmp/room.json"
+rm -f "$tmp"/out.*
+if "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" --rays 2000 >/dev/null 2>"$tmp/stderr" && grep -q "warning" "$tmp/stderr" &&
+   [ -s "$tmp/out.wav" ] && [ -s "$tmp/out.json" ] && [ -s "$tmp/out.csv" ]; then passes=$((passes + 1)); else
+  echo "FAIL: ir: a source outside the room should warn and go on"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

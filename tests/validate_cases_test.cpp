@@ -17,19 +17,13 @@
 #include <cmath>
 
 #include "diffray/validate/case.h"
+#include "validate_fixtures.h"
 
 namespace dv = diffray::validate;
 
 namespace {
 
-dv::CaseResult runCase(const std::string& name, std::uint64_t rays, const dv::Params& given = {}) {
-  const dv::CaseInfo* info = dv::findCase(name);
-  EXPECT_NE(info, nullptr) << name;
-  dv::RunOptions ro;
-  ro.rays = rays;
-  ro.seed = 12345;
-  return info->run(dv::resolveParams(*info, given), ro);
-}
+using diffray::testing::runCase;
 
 // Largest |error| / (5σ + floor) over the rows of one pattern (label); must stay ≤ 1.
 double worstRatio(const dv::CaseResult& r, double bias_rel_peak = 0.0) {

@@ -4,18 +4,14 @@
 #include <gtest/gtest.h>
 
 #include "diffray/validate/case.h"
+#include "validate_fixtures.h"
 
 namespace {
 
 namespace dv = diffray::validate;
 
 dv::CaseResult runCase(const std::string& name, std::uint64_t rays, const dv::Params& given = {}) {
-  const dv::CaseInfo* info = dv::findCase(name);
-  EXPECT_NE(info, nullptr) << name;
-  dv::RunOptions ro;
-  ro.rays = rays;
-  ro.seed = 3;
-  return info->run(dv::resolveParams(*info, given), ro);
+  return diffray::testing::runCase(name, rays, given, 3);
 }
 
 TEST(StatValidateRoom, FreeFieldFluenceDelayAndHitFraction) {
@@ -36,6 +32,23 @@ TEST(ValidateRoom, ShoeboxImagesMatchTheLatticeExactly) {
 TEST(ValidateRoom, ShoeboxImagesHonourTheSourcePosition) {
   const auto r = runCase("shoebox-ism", 0, {{"source", {1, 1, 1}}, {"listener", {9, 6, 2.5}}, {"order", {3}}});
   EXPECT_TRUE(r.passed) << r.detail;
+}
+
+TEST(StatValidateRoom, SpecularShoeboxDecaysAsTheCompleteImageSum) {
+  // The targets: Schroeder curves within 0.5 dB to -30 dB, T30 within 3 % in every band.
+  const auto r = runCase("specular-decay", 300'000);
+  EXPECT_TRUE(r.passed) << r.detail;
+  EXPECT_LE(r.extra.at("worst_decay_db"), 0.5);
+  EXPECT_LE(r.max_abs_error_rel_peak, 0.03);
+  EXPECT_EQ(r.rows.size(), 8u);  // every octave band has a measurable T30
+}
+
+TEST(StatValidateRoom, DiffuseShoeboxT30IsEyringsWithinEightPercent) {
+  const auto r = runCase("diffuse-eyring", 200'000);
+  EXPECT_TRUE(r.passed) << r.detail;
+  // The sign the physics predicts: path-length spread makes a diffuse shoebox decay more slowly than
+  // Eyring (Kuttruff's γ² correction), so every band deviates upwards.
+  for (const auto& row : r.rows) EXPECT_GT(row.traced, row.reference) << row.label;
 }
 
 }  // namespace
