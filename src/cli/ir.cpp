@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -13,6 +14,7 @@
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
+#include "diffray/cli/plot.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -32,7 +34,7 @@ struct IrOptions {
   std::uint64_t rays = 0;
   int ism_order = -2;
   double length_s = 0;
-  bool quiet = false;
+  std::string plot;
 };
 
 std::string withExtension(const std::string& path, const std::string& ext) {
@@ -74,6 +76,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--length", opts->length_s, "IR length in s (default: the room file's, or until -60 dB)")
       ->check(CLI::Range(1e-3, 120.0));
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
+  sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
 
   return [opts, &common]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -85,8 +88,13 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                                 : opts->out;
     if (std::filesystem::path(wav).extension() != ".wav")
       throw core::InputError(wav, "the output must be a .wav file");
-    const auto parent = std::filesystem::absolute(wav).parent_path();
-    if (!std::filesystem::is_directory(parent)) throw core::InputError(wav, "its folder does not exist");
+    for (const std::string& out : {wav, opts->plot}) {
+      if (out.empty()) continue;
+      if (!std::filesystem::is_directory(std::filesystem::absolute(out).parent_path()))
+        throw core::InputError(out, "its folder does not exist");
+    }
+    if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
 
     transport::RoomSimulationOptions so;
@@ -168,7 +176,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"listeners", listeners},
         {"bands", listeners.at(0).at("bands")}};
 
-    // Outputs: each written whole or not at all.
+    // Outputs: each written whole or not at all; the plot first, the likelier to fail.
+    if (!opts->plot.empty()) {
+      std::vector<std::string> names;
+      for (const auto& li : room.listeners) names.push_back(li.name);
+      writeDecayPlot(opts->plot, names, sim.listeners);
+    }
     audio::writeWavFloat(wav, buffer);
     writeHistogramCsv(withExtension(wav, ".csv"), room, sim);
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -35,12 +36,36 @@ std::string quoted(const std::string& s) {
 
 }  // namespace
 
-void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results) {
+void runGnuplot(const std::string& option, const std::string& png_path,
+                const std::function<std::string(const std::string&, const std::string&)>& script_for) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    throw core::InputError(option, "needs gnuplot (Debian: apt-get install gnuplot-nox)");
   const fs::path dir = fs::temp_directory_path() / ("diffray-plot-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string tmp_png = png_path + ".tmp." + std::to_string(::getpid());
+  const fs::path script_path = dir / "plot.gp";
+  std::ofstream(script_path) << script_for(tmp_png, dir.string());
+  const std::string cmd = "gnuplot " + quoted(script_path.string()) + " 2>" + quoted((dir / "err.txt").string());
+  const int status = std::system(cmd.c_str());
+  std::string err;
+  {
+    std::ifstream e(dir / "err.txt");
+    std::getline(e, err);
+  }
+  fs::remove_all(dir);
+  if (status != 0 || !fs::exists(tmp_png)) {
+    std::remove(tmp_png.c_str());
+    throw core::InputError(option, "gnuplot failed" + (err.empty() ? std::string() : ": " + err));
+  }
+  if (std::rename(tmp_png.c_str(), png_path.c_str()) != 0) {
+    std::remove(tmp_png.c_str());
+    throw core::InputError(png_path, "cannot write the plot");
+  }
+}
+
+void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results) {
+  runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
+  const fs::path dir(dir_name);
   std::ostringstream script;
   const int cols = results.size() > 1 ? 2 : 1;
   const int rows = static_cast<int>((results.size() + cols - 1) / cols);
@@ -84,24 +109,46 @@ void writeValidationPlot(const std::string& png_path, const std::vector<validate
     script << "\n";
   }
   script << "unset multiplot\n";
-  const fs::path script_path = dir / "plot.gp";
-  std::ofstream(script_path) << script.str();
-  const std::string cmd = "gnuplot " + quoted(script_path.string()) + " 2>" + quoted((dir / "err.txt").string());
-  const int status = std::system(cmd.c_str());
-  std::string err;
-  {
-    std::ifstream e(dir / "err.txt");
-    std::getline(e, err);
-  }
-  fs::remove_all(dir);
-  if (status != 0 || !fs::exists(tmp_png)) {
-    std::remove(tmp_png.c_str());
-    throw core::InputError("--plot", "gnuplot failed" + (err.empty() ? std::string() : ": " + err));
-  }
-  if (std::rename(tmp_png.c_str(), png_path.c_str()) != 0) {
-    std::remove(tmp_png.c_str());
-    throw core::InputError(png_path, "cannot write the plot");
-  }
+  return script.str();
+  });
+}
+
+void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
+                    const std::vector<ir::EnergyResponse>& responses) {
+  runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
+    const fs::path dir(dir_name);
+    const int cols = responses.size() > 1 ? 2 : 1;
+    const int rows = static_cast<int>((responses.size() + cols - 1) / cols);
+    std::ostringstream script;
+    script << "set terminal pngcairo size " << 640 * cols << "," << 420 * rows << " font 'sans,9'\n"
+           << "set output " << quoted(tmp_png) << "\n"
+           << "set multiplot layout " << rows << "," << cols << "\n"
+           << "set key top right font 'sans,8'\nset grid\nset yrange [-70:2]\n"
+           << "set xlabel 'time after emission (s)'\nset ylabel 'energy decay (Schroeder), dB'\n";
+    for (std::size_t l = 0; l < responses.size(); ++l) {
+      const auto& r = responses[l];
+      const fs::path data = dir / ("listener" + std::to_string(l) + ".dat");
+      std::ofstream out(data);
+      for (int b = 0; b < r.bands.size(); ++b) {
+        // Backward integral of the band's whole histogram, in dB of its total, at each bin's start.
+        const std::vector<double> e = r.total(b);
+        std::vector<double> tail(e.size() + 1, 0.0);
+        for (std::size_t k = e.size(); k-- > 0;) tail[k] = tail[k + 1] + e[k];
+        for (std::size_t k = 0; k < e.size(); ++k) {
+          if (!(tail[k] > 0.0 && tail[0] > 0.0)) break;
+          out << static_cast<double>(k) * r.bin_s << ' ' << 10.0 * std::log10(tail[k] / tail[0]) << '\n';
+        }
+        out << "\n\n";
+      }
+      script << "set title " << quoted("listener " + names[l]) << "\nplot ";
+      for (int b = 0; b < r.bands.size(); ++b)
+        script << (b ? ", " : "") << quoted(data.string()) << " index " << b << " using 1:2 with lines lw 2 title "
+               << quoted(r.bands.label(b) + " Hz");
+      script << "\n";
+    }
+    script << "unset multiplot\n";
+    return script.str();
+  });
 }
 
 }  // namespace diffray::cli

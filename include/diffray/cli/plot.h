@@ -3,14 +3,27 @@
 // one panel per case, traced values as points and the oracle as a line, against the screen position (for
 // 2D screens, the row through the centre; for gratings, sinθ of each order). The PNG is written to a
 // temporary file and renamed, so a failed plot leaves nothing behind. Not thread-safe (runs a process).
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "diffray/ir/response.h"
 #include "diffray/validate/case.h"
 
 namespace diffray::cli {
 
+/// Runs the gnuplot script `script_for(tmp_png, scratch_dir)` (which must write its PNG to tmp_png; data
+/// files go in scratch_dir) and renames the PNG to png_path. Throws core::InputError naming `option` when
+/// gnuplot is missing or fails; nothing is left behind then.
+void runGnuplot(const std::string& option, const std::string& png_path,
+                const std::function<std::string(const std::string&, const std::string&)>& script_for);
+
 /// Throws core::InputError naming --plot when gnuplot is missing or fails.
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results);
+
+/// The energy decay (Schroeder) curves of every band, in dB, one panel per listener (`names`), from the
+/// responses' total histograms (`diffray ir --plot`). Throws core::InputError naming --plot on failure.
+void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
+                    const std::vector<ir::EnergyResponse>& responses);
 
 }  // namespace diffray::cli
