@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "diffray/core/error.h"
 #include "diffray/transport/image_sources.h"
 #include "diffray/transport/room_tracer.h"
 
@@ -155,6 +156,26 @@ TEST(ImageSources, WallBlocksAndOpeningPasses) {
     opt.max_order = 0;
     const auto arrivals = dt::imageSources(room, geometry, 0, 0, opt);
     EXPECT_EQ(arrivals.size(), open ? 1u : 0u);
+  }
+}
+
+TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {
+  // 6 planes at order 50: 1 + 6·(5^50 − 1)/4 ≈ 1.33e35 candidates, far past any integer type (the message
+  // used to print a negative count).
+  dr::Room room = boxRoom(Vec3(4, 3, 2.5), 0.2, 0.0);
+  room.sources.push_back({"S", Vec3(1, 1, 1), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(3, 2, 1.2), 0.1});
+  const dt::RoomGeometry geometry(room);
+  dt::ImageSourceOptions opt;
+  opt.max_order = 50;
+  try {
+    dt::imageSources(room, geometry, 0, 0, opt);
+    ADD_FAILURE() << "no error";
+  } catch (const diffray::core::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("makes -"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("1.33e+35 image-source candidates"), std::string::npos) << msg;
   }
 }
 
