@@ -118,6 +118,15 @@ if grep -q '"seed": 77' "$tmp/o/s77.json" && grep -q '"seed": 1,' "$tmp/o/s1.jso
    cmp -s "$tmp/o/s77.wav" "$tmp/o/s1b.wav" && ! cmp -s "$tmp/o/s77.wav" "$tmp/o/s1.wav"; then
   passes=$((passes + 1)); else echo "FAIL: ir: the room file's output.seed is not the default seed"; fails=$((fails + 1)); fi
 
+# Run in the room file's folder with the default output, the sidecar (ROOM.json) would be the room file:
+# one line, non-zero exit, the room file untouched and no WAV or CSV written.
+cp "$tmp/in/s1.json" "$tmp/in/keep.json"
+(cd "$tmp/in" && "$bin" ir s1.json --rays 2000 >/dev/null 2>"$tmp/stderr")
+code=$?
+if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "would overwrite" "$tmp/stderr" && cmp -s "$tmp/in/s1.json" "$tmp/in/keep.json" &&
+   ! ls "$tmp/in/s1.wav" "$tmp/in/s1.csv" >/dev/null 2>&1; then passes=$((passes + 1)); else
+  echo "FAIL: ir: the default output overwrote the room file (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

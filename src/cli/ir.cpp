@@ -90,6 +90,14 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       throw core::InputError(wav, "the output must be a .wav file");
     const auto parent = std::filesystem::absolute(wav).parent_path();
     if (!std::filesystem::is_directory(parent)) throw core::InputError(wav, "its folder does not exist");
+    // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the
+    // room file itself (`cd rooms && diffray ir shoebox.json` destroyed shoebox.json).
+    for (const char* ext : {".wav", ".json", ".csv"}) {
+      std::error_code ec;
+      const std::string out = withExtension(wav, ext);
+      if (std::filesystem::equivalent(out, opts->room_file, ec))
+        throw core::InputError(out, "would overwrite the room file " + opts->room_file + "; give -o another name");
+    }
     for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
 
     transport::RoomSimulationOptions so;
