@@ -93,6 +93,8 @@ expect_ir_error "missing OBJ"           "{$mat, \"geometry\": [{\"obj\": {\"file
 expect_ir_error "zero listener radius"  "{$mat, $box, $src, \"listeners\": [{\"position\": [3,2,1.2], \"radius_m\": 0}]}"
 expect_ir_error "no listeners"          "{$mat, $box, $src}"
 expect_ir_error "unknown key"           "{$mat, $box, $src, $lis, \"ouptut\": {}}"
+expect_ir_error "histograms past memory" "{$mat, $box, $src, $lis, \"output\": {\"max_length_s\": 600, \"ir_length_s\": 600, \"histogram_bin_s\": 1e-4}}"
+expect_ir_error "nanosecond bins"       "{$mat, $box, $src, $lis, \"output\": {\"histogram_bin_s\": 1e-9}}"
 expect_ir_error "zero rays"             "$good" --rays 0
 expect_ir_error "ISM order out of range" "$good" --ism-order 99
 printf '%s\n' "$good" >"$tmp/room.json"

@@ -179,6 +179,28 @@ TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {
   }
 }
 
+TEST(RoomTracer, HistogramsTooLargeForMemoryAreRefusedBeforeTracing) {
+  // By hand: 10 s in 1 ms bins is 10,000 bins; 0.0105 s in 1 ms bins needs 11 (the last one partial).
+  EXPECT_EQ(dt::histogramBins(10.0, 1e-3, 8, 2), 10000);
+  EXPECT_EQ(dt::histogramBins(0.0105, 1e-3, 8, 2), 11);
+  // 600 s in 0.1 ms bins × 8 bands = 4.8e7 cells: the scene file accepts it, the machine's memory did not.
+  dr::Room room = boxRoom(Vec3(4, 3, 2.5), 0.2, 0.0);
+  room.sources.push_back({"S", Vec3(1, 1, 1), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(3, 2, 1.2), 0.1});
+  const dt::RoomGeometry geometry(room);
+  dt::RoomTraceOptions opt;
+  opt.rays = 1000;
+  opt.length_s = 600.0;
+  opt.bin_s = 1e-4;
+  try {
+    dt::traceRoom(room, geometry, 0, opt);
+    ADD_FAILURE() << "no error";
+  } catch (const diffray::core::InputError& e) {
+    EXPECT_EQ(e.where(), "output.histogram_bin_s");
+    EXPECT_NE(std::string(e.what()).find("4.8e+07 histogram cells"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StatRoomTracer, HybridEqualsRaysAlone) {
   // Rays with image sources to order 2 (the tracer skipping those paths) against rays alone: the total
   // energy in the first 60 ms must agree within the two runs' combined 5σ, and the image sources must carry
