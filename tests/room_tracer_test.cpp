@@ -243,8 +243,8 @@ TEST(StatRoomTracer, HybridEqualsRaysAloneInEveryBandWithBandDependentMaterials)
   // α and s differ per band, so the tracer's fixed band-mean event probabilities differ from every band's
   // own and the per-band weights do the work: rays alone minus the hybrid's rays is the specular part of
   // orders 0–2 as the tracer weights it, which must equal the image sources' closed form
-  // Π(1 − α_b)(1 − s_b)/d² in every band. (Specular weights set to the band-mean ones fail bands 4–7, by 6 to 45σ;
-  // the uniform room above cannot see that.)
+  // Π(1 − α_b)(1 − s_b)/d² in every band. (Specular weights set to the band-mean ones fail bands 4–7, by
+  // 6 to 45σ; the uniform room above cannot see that.)
   dr::Room room;
   dr::Material m;
   m.name = "wall";
