@@ -2,7 +2,7 @@
 # Bad input to the diffray CLI must give exactly one line on stderr, a non-zero exit code and no output
 # file (design: never a crash, never a half-written output). Usage: cli_bad_input.sh PATH/TO/diffray
 set -u
-bin="$1"
+bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"  # absolute: one check runs in another folder
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -93,6 +93,8 @@ expect_ir_error "missing OBJ"           "{$mat, \"geometry\": [{\"obj\": {\"file
 expect_ir_error "zero listener radius"  "{$mat, $box, $src, \"listeners\": [{\"position\": [3,2,1.2], \"radius_m\": 0}]}"
 expect_ir_error "no listeners"          "{$mat, $box, $src}"
 expect_ir_error "unknown key"           "{$mat, $box, $src, $lis, \"ouptut\": {}}"
+expect_ir_error "histograms past memory" "{$mat, $box, $src, $lis, \"output\": {\"max_length_s\": 600, \"ir_length_s\": 600, \"histogram_bin_s\": 1e-4}}"
+expect_ir_error "nanosecond bins"       "{$mat, $box, $src, $lis, \"output\": {\"histogram_bin_s\": 1e-9}}"
 expect_ir_error "zero rays"             "$good" --rays 0
 expect_ir_error "ISM order out of range" "$good" --ism-order 99
 printf '%s\n' "$good" >"$tmp/room.json"
@@ -105,6 +107,27 @@ rm -f "$tmp"/out.*
 if "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" --rays 2000 >/dev/null 2>"$tmp/stderr" && grep -q "warning" "$tmp/stderr" &&
    [ -s "$tmp/out.wav" ] && [ -s "$tmp/out.json" ] && [ -s "$tmp/out.csv" ]; then passes=$((passes + 1)); else
   echo "FAIL: ir: a source outside the room should warn and go on"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
+# The room file's output.seed is the seed unless --seed is given (rooms/README.md): the sidecar says which
+# was used, and --seed 77 on a file saying 1 gives the same WAV as a file saying 77.
+mkdir -p "$tmp/in" "$tmp/o"
+seeded() { printf '%s\n' "{$mat, $box, $src, $lis, \"output\": {\"seed\": $1, \"ir_length_s\": 0.2}}"; }
+seeded 77 >"$tmp/in/s77.json"; seeded 1 >"$tmp/in/s1.json"
+"$bin" ir "$tmp/in/s77.json" -o "$tmp/o/s77.wav" --rays 2000 >/dev/null 2>&1
+"$bin" ir "$tmp/in/s1.json" -o "$tmp/o/s1.wav" --rays 2000 >/dev/null 2>&1
+"$bin" ir "$tmp/in/s1.json" -o "$tmp/o/s1b.wav" --rays 2000 --seed 77 >/dev/null 2>&1
+if grep -q '"seed": 77' "$tmp/o/s77.json" && grep -q '"seed": 1,' "$tmp/o/s1.json" &&
+   cmp -s "$tmp/o/s77.wav" "$tmp/o/s1b.wav" && ! cmp -s "$tmp/o/s77.wav" "$tmp/o/s1.wav"; then
+  passes=$((passes + 1)); else echo "FAIL: ir: the room file's output.seed is not the default seed"; fails=$((fails + 1)); fi
+
+# Run in the room file's folder with the default output, the sidecar (ROOM.json) would be the room file:
+# one line, non-zero exit, the room file untouched and no WAV or CSV written.
+cp "$tmp/in/s1.json" "$tmp/in/keep.json"
+(cd "$tmp/in" && "$bin" ir s1.json --rays 2000 >/dev/null 2>"$tmp/stderr")
+code=$?
+if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "would overwrite" "$tmp/stderr" && cmp -s "$tmp/in/s1.json" "$tmp/in/keep.json" &&
+   ! ls "$tmp/in/s1.wav" "$tmp/in/s1.csv" >/dev/null 2>&1; then passes=$((passes + 1)); else
+  echo "FAIL: ir: the default output overwrote the room file (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate

@@ -157,5 +157,6 @@ TEST(AirAbsorption, RejectsAirOutsideTheStandardNamingTheField) {
   EXPECT_THROW(diffray::room::airAbsorptionDbPerM(0.0, Air{}), diffray::core::InputError);
   // The ends of the ranges are accepted.
   EXPECT_NO_THROW(diffray::room::airAbsorptionDbPerM(1000.0, Air{-20.0, 0.0, 50.0}));
-  EXPECT_NO_THROW(diffray::room::airAbsorptionDbPerM(1000.0, Air{50.0, 100.0, 120.0}));
+  EXPECT_NO_THROW(diffray::room::airAbsorptionDbPerM(1000.0, Air{50.0, 100.0, 200.0}));
+  EXPECT_EQ(message(Air{20.0, 50.0, 201.0}), "air.pressure");
 }

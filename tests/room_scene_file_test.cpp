@@ -10,6 +10,7 @@
 #include <set>
 
 #include "diffray/core/error.h"
+#include "diffray/room/air.h"
 #include "diffray/room/checks.h"
 #include "diffray/room/materials.h"
 #include "diffray/room/scene_file.h"
@@ -307,6 +308,20 @@ TEST(RoomSceneFileErrors, OutputRanges) {
   scene = baseScene();
   scene["bands"] = "octaves";
   expectMessage(errorOf(scene), {"rooms/x.json: bands: must be \"octave\" or \"third-octave\""});
+}
+
+TEST(RoomSceneFile, EveryAirTheFileAcceptsTheAirModelAccepts) {
+  // The scene file and room/air.h check the air separately; a value the file accepts must not fail later,
+  // after the trace, in the air model (pressure_kpa 150 used to pass the file and fail air.pressure).
+  for (const auto& air : {nlohmann::json{{"temperature_c", -20}, {"humidity_percent", 0}, {"pressure_kpa", 50}},
+                          nlohmann::json{{"temperature_c", 50}, {"humidity_percent", 100}, {"pressure_kpa", 200}},
+                          nlohmann::json{{"pressure_kpa", 150}}}) {
+    auto scene = baseScene();
+    scene["air"] = air;
+    const dr::Room room = dr::parseRoom(scene.dump(), "rooms/x.json", kData);
+    EXPECT_NO_THROW(dr::airAttenuationPerM(room.air, room.bands)) << air.dump();
+    EXPECT_NO_THROW(dr::speedOfSound(room.air)) << air.dump();
+  }
 }
 
 TEST(RoomSceneFileErrors, UndefinedMaterial) {

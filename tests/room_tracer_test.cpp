@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "diffray/core/error.h"
 #include "diffray/transport/image_sources.h"
 #include "diffray/transport/room_tracer.h"
 
@@ -158,13 +159,52 @@ TEST(ImageSources, WallBlocksAndOpeningPasses) {
   }
 }
 
-TEST(StatRoomTracer, HybridEqualsRaysAlone) {
-  // Rays with image sources to order 2 (the tracer skipping those paths) against rays alone: the total
-  // energy in the first 60 ms must agree within the two runs' combined 5σ, and the image sources must carry
-// more than 5σ of it, so that counting them twice or not at all would fail.
-  dr::Room room = boxRoom(Vec3(6, 5, 3), 0.25, 0.3);
-  room.sources.push_back({"S", Vec3(1.5, 1.2, 1.4), 1.0, {}});
-  room.listeners.push_back({"L", Vec3(4.2, 3.1, 1.6), 0.4});
+TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {
+  // 6 planes at order 50: 1 + 6·(5^50 − 1)/4 ≈ 1.33e35 candidates, far past any integer type (the message
+  // used to print a negative count).
+  dr::Room room = boxRoom(Vec3(4, 3, 2.5), 0.2, 0.0);
+  room.sources.push_back({"S", Vec3(1, 1, 1), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(3, 2, 1.2), 0.1});
+  const dt::RoomGeometry geometry(room);
+  dt::ImageSourceOptions opt;
+  opt.max_order = 50;
+  try {
+    dt::imageSources(room, geometry, 0, 0, opt);
+    ADD_FAILURE() << "no error";
+  } catch (const diffray::core::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("makes -"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("1.33e+35 image-source candidates"), std::string::npos) << msg;
+  }
+}
+
+TEST(RoomTracer, HistogramsTooLargeForMemoryAreRefusedBeforeTracing) {
+  // By hand: 10 s in 1 ms bins is 10,000 bins; 0.0105 s in 1 ms bins needs 11 (the last one partial).
+  EXPECT_EQ(dt::histogramBins(10.0, 1e-3, 8, 2), 10000);
+  EXPECT_EQ(dt::histogramBins(0.0105, 1e-3, 8, 2), 11);
+  // 600 s in 0.1 ms bins × 8 bands = 4.8e7 cells: the scene file accepts it, the machine's memory did not.
+  dr::Room room = boxRoom(Vec3(4, 3, 2.5), 0.2, 0.0);
+  room.sources.push_back({"S", Vec3(1, 1, 1), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(3, 2, 1.2), 0.1});
+  const dt::RoomGeometry geometry(room);
+  dt::RoomTraceOptions opt;
+  opt.rays = 1000;
+  opt.length_s = 600.0;
+  opt.bin_s = 1e-4;
+  try {
+    dt::traceRoom(room, geometry, 0, opt);
+    ADD_FAILURE() << "no error";
+  } catch (const diffray::core::InputError& e) {
+    EXPECT_EQ(e.where(), "output.histogram_bin_s");
+    EXPECT_NE(std::string(e.what()).find("4.8e+07 histogram cells"), std::string::npos) << e.what();
+  }
+}
+
+// Rays with image sources to order 2 (the tracer skipping those paths) against rays alone, in every band:
+// the total energy in the first 60 ms must agree within the two runs' combined 5σ, and the image sources
+// must carry more than 5σ of it, so that counting them twice or not at all would fail.
+void expectHybridEqualsRaysAlone(const dr::Room& room) {
   const dt::RoomGeometry geometry(room);
   dt::RoomTraceOptions opt;
   opt.rays = 200000;
@@ -180,12 +220,44 @@ TEST(StatRoomTracer, HybridEqualsRaysAlone) {
   iopt.max_order = 2;
   iopt.length_s = opt.length_s;
   iopt.speed_of_sound_m_s = kC;
-  double ism = 0;
-  for (const auto& a : dt::imageSources(room, geometry, 0, 0, iopt)) ism += a.energy[0];
-  const auto [ra, sa] = windowSum(alone.listeners[0], 0, 1.0);
-  const auto [rh, sh] = windowSum(hybrid.listeners[0], 0, 1.0);
-  EXPECT_GT(ism, 5 * std::hypot(sa, sh));
-  EXPECT_NEAR(rh + ism, ra, 5 * std::hypot(sa, sh)) << "rays alone " << ra << ", hybrid " << rh << " + " << ism;
+  const auto arrivals = dt::imageSources(room, geometry, 0, 0, iopt);
+  for (int b = 0; b < room.bands.size(); ++b) {
+    double ism = 0;
+    for (const auto& a : arrivals) ism += a.energy[b];
+    const auto [ra, sa] = windowSum(alone.listeners[0], b, 1.0);
+    const auto [rh, sh] = windowSum(hybrid.listeners[0], b, 1.0);
+    EXPECT_GT(ism, 5 * std::hypot(sa, sh)) << "band " << b;
+    EXPECT_NEAR(rh + ism, ra, 5 * std::hypot(sa, sh)) << "band " << b << ": rays alone " << ra << ", hybrid " << rh
+                                                      << " + " << ism;
+  }
+}
+
+TEST(StatRoomTracer, HybridEqualsRaysAlone) {
+  dr::Room room = boxRoom(Vec3(6, 5, 3), 0.25, 0.3);
+  room.sources.push_back({"S", Vec3(1.5, 1.2, 1.4), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(4.2, 3.1, 1.6), 0.4});
+  expectHybridEqualsRaysAlone(room);
+}
+
+TEST(StatRoomTracer, HybridEqualsRaysAloneInEveryBandWithBandDependentMaterials) {
+  // α and s differ per band, so the tracer's fixed band-mean event probabilities differ from every band's
+  // own and the per-band weights do the work: rays alone minus the hybrid's rays is the specular part of
+  // orders 0–2 as the tracer weights it, which must equal the image sources' closed form
+  // Π(1 − α_b)(1 − s_b)/d² in every band. (Specular weights set to the band-mean ones fail bands 4–7, by
+  // 6 to 45σ; the uniform room above cannot see that.)
+  dr::Room room;
+  dr::Material m;
+  m.name = "wall";
+  for (int b = 0; b < room.bands.size(); ++b) {
+    m.absorption[b] = 0.05 + 0.06 * b;  // 0.05 … 0.47
+    m.scattering[b] = 0.7 - 0.09 * b;   // 0.70 … 0.07
+  }
+  const int id = room.addMaterial(m);
+  const int walls[6] = {id, id, id, id, id, id};
+  room.addBox(Vec3(0, 0, 0), Vec3(6, 5, 3), walls);
+  room.sources.push_back({"S", Vec3(1.5, 1.2, 1.4), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(4.2, 3.1, 1.6), 0.4});
+  expectHybridEqualsRaysAlone(room);
 }
 
 }  // namespace

@@ -69,7 +69,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->required();
   sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)");
   addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");
-  sub->add_option("--seed", common.seed, "random seed; the same seed gives the same IR")->capture_default_str();
+  CLI::Option* seed_option =
+      sub->add_option("--seed", common.seed, "random seed (default: the room file's output.seed); the same seed "
+                                             "gives the same IR");
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
       ->check(CLI::Range(-1, 50));
@@ -78,11 +80,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
 
-  return [opts, &common]() {
+  return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
     core::ThreadLimit limit(common.threads);
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(opts->room_file, &warnings);
+    if (seed_option->count() == 0) common.seed = room.output.seed;  // the file's seed unless --seed is given
     const std::string wav = opts->out.empty()
                                 ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
                                 : opts->out;
@@ -95,6 +98,14 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     }
     if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
       throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the
+    // room file itself (`cd rooms && diffray ir shoebox.json` destroyed shoebox.json).
+    for (const char* ext : {".wav", ".json", ".csv"}) {
+      std::error_code ec;
+      const std::string out = withExtension(wav, ext);
+      if (std::filesystem::equivalent(out, opts->room_file, ec))
+        throw core::InputError(out, "would overwrite the room file " + opts->room_file + "; give -o another name");
+    }
     for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
 
     transport::RoomSimulationOptions so;

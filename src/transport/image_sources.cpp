@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "diffray/core/error.h"
@@ -81,11 +82,15 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
     candidates += level;
     level *= std::max(n_planes - 1, 1);
   }
-  if (candidates > options.max_candidates)
-    throw core::InputError("output.ism_order", "order " + std::to_string(options.max_order) + " with " +
-                                                   std::to_string(n_planes) + " planes makes " +
-                                                   std::to_string(static_cast<long long>(candidates)) +
-                                                   " image-source candidates; lower it");
+  if (candidates > options.max_candidates) {
+    // Printed as a double: the count overflows any integer type long before the order limit (6 planes at
+    // order 50 make ~1e34).
+    std::ostringstream why;
+    why.precision(3);
+    why << "order " << options.max_order << " with " << n_planes << " planes makes " << candidates
+        << " image-source candidates, more than the limit of " << options.max_candidates << "; lower it";
+    throw core::InputError("output.ism_order", why.str());
+  }
   Validator v{room, geometry, {}};
   for (const auto& m : room.materials) {
     bool open = true;

@@ -91,6 +91,8 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     const double decay_s = std::isfinite(sim.pilot_t60_s) ? sim.pilot_t60_s : 1.5 * sim.eyring_t60_s;
     sim.length_s = std::min(room.output.max_length_s, 1.1 * decay_s + direct + 0.05);
   }
+  // Refuse histograms too large for memory now, not after the image sources.
+  histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
   for (std::size_t l = 0; l < room.listeners.size(); ++l) {
     ir::EnergyResponse r;
     r.bands = room.bands;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -27,6 +28,22 @@ void RoomTraceResult::merge(const RoomTraceResult& o) {
   escaped += o.escaped;
   roulette_killed += o.roulette_killed;
   timed_out += o.timed_out;
+}
+
+int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners) {
+  core::requirePositive("length", length_s);
+  core::requirePositive("histogram bin", bin_s);
+  const double bins = std::max(1.0, std::ceil(length_s / bin_s));
+  const double cells = bins * bands * static_cast<double>(std::max<std::size_t>(listeners, 1));
+  if (!(cells <= kMaxHistogramCells)) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "an IR of " << length_s << " s in bins of " << bin_s << " s for " << bands << " bands and " << listeners
+        << " listener(s) needs " << cells << " histogram cells, more than the limit of " << kMaxHistogramCells
+        << "; use wider bins or a shorter IR (ir_length_s, max_length_s, --length)";
+    throw core::InputError("output.histogram_bin_s", why.str());
+  }
+  return static_cast<int>(bins);
 }
 
 double directivityGain(const room::Directivity& d, double cos_theta) {
@@ -226,14 +243,12 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
                           const RoomTraceOptions& options) {
   if (source_index < 0 || source_index >= static_cast<int>(room.sources.size()))
     throw core::InternalError("traceRoom: no such source");
-  core::requirePositive("length", options.length_s);
-  core::requirePositive("histogram bin", options.bin_s);
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
   Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0};
   for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
-  tr.bins = core::checkedCount("IR length / histogram bin", options.length_s / options.bin_s, 1e7);
+  tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
   tr.max_path_m = options.length_s * options.speed_of_sound_m_s;

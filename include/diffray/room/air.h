@@ -11,7 +11,8 @@
 namespace diffray::room {
 
 /// Throws core::InputError naming the field unless temperature is in [−20, 50] °C (the range of
-/// ISO 9613-1's tables and of its fit), relative humidity in [0, 100] % and pressure in [50, 120] kPa.
+/// ISO 9613-1's tables and of its fit), relative humidity in [0, 100] % and pressure in [50, 200] kPa (the
+/// range the scene file accepts, rooms/README.md).
 void checkAir(const Air& air);
 
 /// Molar concentration of water vapour h in % (ISO 9613-1 Annex B, eq. B.1 with B.2–B.3).
