@@ -65,7 +65,9 @@ expect_ir_error() {  # expect_ir_error DESCRIPTION ROOM_JSON_TEXT [ARGS...]
   local what="$1" text="$2"; shift 2
   printf '%s\n' "$text" >"$tmp/room.json"
   rm -f "$tmp"/out.*
-  "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" --rays 2000 "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local rays=(--rays 2000)
+  case " $* " in *" --rays "*) rays=() ;; esac
+  "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" "${rays[@]}" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   local code=$?
   local lines
   lines=$(wc -l <"$tmp/stderr")
@@ -96,6 +98,9 @@ expect_ir_error "unknown key"           "{$mat, $box, $src, $lis, \"ouptut\": {}
 expect_ir_error "histograms past memory" "{$mat, $box, $src, $lis, \"output\": {\"max_length_s\": 600, \"ir_length_s\": 600, \"histogram_bin_s\": 1e-4}}"
 expect_ir_error "nanosecond bins"       "{$mat, $box, $src, $lis, \"output\": {\"histogram_bin_s\": 1e-9}}"
 expect_ir_error "zero rays"             "$good" --rays 0
+expect_ir_error "lossless 1 cm box (endless bounces)" "{\"materials\": {\"w\": {\"absorption\": 0, \"scattering\": 0.2}}, \"geometry\": [{\"box\": {\"min\": [0,0,0], \"max\": [0.01,0.01,0.01], \"materials\": {\"all\": \"w\"}}}], \"sources\": [{\"position\": [0.005,0.005,0.005]}], \"listeners\": [{\"position\": [0.007,0.005,0.005], \"radius_m\": 0.001}]}" --rays 20000
+expect_ir_error "8 kHz band at 8 kHz sampling" "{$mat, $box, $src, $lis, \"output\": {\"sample_rate_hz\": 8000}}"
+expect_ir_error "one triangle, no volume" "{$mat, \"geometry\": [{\"polygon\": {\"vertices\": [[0,0,0],[1,0,0],[0,1,0]], \"material\": \"w\"}}], $src, $lis}"
 expect_ir_error "ISM order out of range" "$good" --ism-order 99
 printf '%s\n' "$good" >"$tmp/room.json"
 expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000

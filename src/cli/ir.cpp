@@ -59,6 +59,28 @@ void writeHistogramCsv(const std::string& path, const room::Room& room, const tr
   });
 }
 
+// What synthesis will need, checked before the (long) trace rather than after it.
+void checkSynthesis(const room::Room& room, double length_s) {
+  const std::string where = room.file.empty() ? "room" : room.file;
+  const double fs = room.output.sample_rate_hz;
+  const int top = room.bands.size() - 1;
+  if (!(room.bands.upperHz(top) < 0.5 * fs))
+    throw core::InputError(where + ": output.sample_rate_hz",
+                           "the " + room.bands.label(top) + " Hz band reaches past the Nyquist frequency of " +
+                               std::to_string(static_cast<long>(fs)) + " Hz; raise the sample rate");
+  if (!(room.volume() > 0.0))
+    throw core::InputError(where, "the geometry encloses no volume, which the IR synthesis needs (V in the "
+                                  "reflection density 4πc³t²/V)");
+  // Longest possible IR: --length, the file's length, or (auto) max_length_s.
+  const double longest = length_s > 0 ? length_s : (room.output.ir_length_s > 0 ? room.output.ir_length_s
+                                                                                 : room.output.max_length_s);
+  constexpr double kMaxFrames = 33554432.0;  // 2^25 frames: ~12 min at 48 kHz, a few GB while synthesizing
+  if (longest * fs > kMaxFrames)
+    throw core::InputError(where + ": output", "an IR of " + std::to_string(longest) + " s at " +
+                                                   std::to_string(static_cast<long>(fs)) +
+                                                   " Hz is over 2^25 samples; shorten max_length_s/ir_length_s");
+}
+
 }  // namespace
 
 Runner addIrCommand(CLI::App& app, CommonOptions& common) {
@@ -106,7 +128,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       if (std::filesystem::equivalent(out, opts->room_file, ec))
         throw core::InputError(out, "would overwrite the room file " + opts->room_file + "; give -o another name");
     }
-    for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+    checkSynthesis(room, opts->length_s);
 
     transport::RoomSimulationOptions so;
     so.rays = opts->rays;
@@ -116,6 +138,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
     core::Progress progress("ir " + room.name, rays * room.sources.size());
     so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+    so.on_start = [&warnings] {
+      for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+    };
     const transport::RoomSimulation sim = transport::simulateRoom(room, so);
     progress.finish();
     for (const auto& w : sim.warnings) std::cerr << "diffray: warning: " << w << "\n";

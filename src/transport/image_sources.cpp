@@ -126,9 +126,11 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
     }
     out.push_back(a);
   };
-  // Depth-first over plane sequences up to max_order (emit() drops arrivals later than length_s; an
-  // image's distance does not bound its children's in a non-convex room, so it cannot prune).
+  // Depth-first over plane sequences up to max_order. A child's valid path is at least as long as its
+  // parent image's distance to the listener (unfold the last leg: |I − R| + |R − L| ≥ |I − L|, triangle
+  // inequality), so an image beyond c·length prunes its whole subtree exactly.
   auto recurse = [&](auto&& self, int depth) -> void {
+    if (((images.empty() ? s : images.back()) - l).norm() > max_d) return;
     emit();
     if (depth == options.max_order) return;
     const Vec3 from = images.empty() ? s : images.back();

@@ -42,9 +42,10 @@ namespace {
 // The longest T60 over the bands, from a short pilot trace (rays alone, 10 ms bins, up to max_length_s):
 // T20 of each band's decay summed over the listeners (T30 where the pilot's range allows, EDT where not
 // even T20 does), or NaN if no band decayed by 10 dB.
-double pilotT60(const room::Room& room, const RoomGeometry& geometry, const RoomSimulation& sim, std::uint64_t seed) {
+double pilotT60(const room::Room& room, const RoomGeometry& geometry, const RoomSimulation& sim, std::uint64_t seed,
+                std::uint64_t rays) {
   RoomTraceOptions to;
-  to.rays = 20000;
+  to.rays = rays;
   to.seed = seed ^ 0x5eedf00dull;
   to.length_s = room.output.max_length_s;
   to.bin_s = 0.01;
@@ -62,6 +63,45 @@ double pilotT60(const room::Room& room, const RoomGeometry& geometry, const Room
     if (std::isfinite(t) && !(t <= longest)) longest = t;
   }
   return longest;
+}
+
+// Rays of the pilot run: 20,000, fewer in rooms whose rays bounce very often (at most 1e8 wall hits).
+double pilotRays(double bounces_per_ray) { return std::clamp(1e8 / bounces_per_ray, 500.0, 20000.0); }
+
+// Wall hits a ray makes on average, at most: the path over the mean free path 4V/S, or the bounces until
+// Russian roulette (−60 dB, roulette_level) ends it at the least absorbing band's mean absorption.
+double bouncesPerRay(const room::Room& room, double length_s, double c) {
+  const double volume = room.volume(), area = room.surfaceArea();
+  if (!(volume > 0.0) || !(area > 0.0)) return length_s * c;  // no enclosure: a 1 m free path as the bound
+  const double by_length = length_s * c / (4.0 * volume / area);
+  core::BandArray absorbed = core::bandFill(0.0);
+  const auto& mesh = room.mesh;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const double a = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
+    const room::Material& m = room.materials[mesh.object_of_triangle[i]];
+    for (int b = 0; b < room.bands.size(); ++b) absorbed[b] += a * (m.absorption[b] - m.transmission[b]);
+  }
+  double least = 1.0;
+  for (int b = 0; b < room.bands.size(); ++b) least = std::min(least, absorbed[b] / area);
+  const double by_roulette = least > 0.0 ? std::log(1e6) / -std::log1p(-std::min(least, 1.0 - 1e-12)) : 1e300;
+  return std::min(by_length, by_roulette);
+}
+
+void checkWorkload(const room::Room& room, const RoomSimulation& sim, double length_s, std::uint64_t rays,
+                   bool pilot) {
+  constexpr double kMaxQueries = 5e9;  // ~8 min at the ~10M wall hits per second of 2 cores
+  const double per_ray = bouncesPerRay(room, length_s, sim.speed_of_sound_m_s);
+  const double queries =
+      per_ray * (static_cast<double>(rays) * static_cast<double>(room.sources.size()) + (pilot ? pilotRays(per_ray) : 0.0));
+  if (queries > kMaxQueries) {
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "about " << queries << " wall hits (" << per_ray << " per ray over " << length_s
+        << " s): the room absorbs too little or is too small for that length; set output.ir_length_s or "
+           "output.max_length_s shorter, or use fewer rays";
+    throw core::InputError(room.file.empty() ? "room" : room.file, msg.str());
+  }
 }
 
 }  // namespace
@@ -84,10 +124,17 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     for (const auto& l : room.listeners) direct = std::max(direct, (s.position_m - l.position_m).norm() / sim.speed_of_sound_m_s);
   const RoomGeometry geometry(room, options.brute_force);
   sim.length_s = options.length_s > 0 ? options.length_s : room.output.ir_length_s;
-  if (!(sim.length_s > 0)) {
+  const bool automatic = !(sim.length_s > 0);
+  // Refuse work that would not end in reasonable time, before any of it starts: a lossless or tiny room
+  // followed for max_length_s makes every ray bounce length·c / (mean free path) times.
+  checkWorkload(room, sim, automatic ? room.output.max_length_s : sim.length_s, rays, automatic);
+  if (!automatic) histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
+  if (options.on_start) options.on_start();
+  if (automatic) {
     // "auto": a pilot run measures the decay (Eyring misjudges non-diffuse rooms: a shoebox with an
     // absorbing floor and ceiling rings on between its hard walls for twice as long).
-    sim.pilot_t60_s = pilotT60(room, geometry, sim, options.seed);
+    const double per_ray = bouncesPerRay(room, room.output.max_length_s, sim.speed_of_sound_m_s);
+    sim.pilot_t60_s = pilotT60(room, geometry, sim, options.seed, static_cast<std::uint64_t>(pilotRays(per_ray)));
     const double decay_s = std::isfinite(sim.pilot_t60_s) ? sim.pilot_t60_s : 1.5 * sim.eyring_t60_s;
     sim.length_s = std::min(room.output.max_length_s, 1.1 * decay_s + direct + 0.05);
   }
@@ -129,9 +176,12 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
   to.air_m_per_m = sim.air_m_per_m;
   to.on_progress = options.on_progress;
+  std::vector<std::uint64_t> crossings;
   for (int s = 0; s < static_cast<int>(room.sources.size()); ++s) {
     to.seed = options.seed + 1000003ull * static_cast<std::uint64_t>(s);  // independent streams per source
     RoomTraceResult res = traceRoom(room, geometry, s, to);
+    crossings.resize(res.crossings.size(), 0);
+    for (std::size_t l = 0; l < res.crossings.size(); ++l) crossings[l] += res.crossings[l];
     if (sim.traced.empty()) {
       sim.traced = res.listeners;
     } else {
@@ -153,6 +203,13 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
       sim.warnings.push_back(w.str());
     }
   }
+  for (std::size_t l = 0; l < crossings.size(); ++l)
+    if (crossings[l] < 100) {
+      std::ostringstream w;
+      w << "listener " << room.listeners[l].name << " was crossed by " << crossings[l]
+        << " ray segments only: its traced (late) part is mostly noise; use a larger radius_m or more rays";
+      sim.warnings.push_back(w.str());
+    }
   for (std::size_t l = 0; l < sim.listeners.size(); ++l) {
     auto& r = sim.listeners[l];
     r.traced.assign(nb, std::vector<double>(sim.traced[l].bins(), 0.0));

@@ -25,6 +25,9 @@ struct RoomSimulationOptions {
   double length_s = 0.0;   ///< 0 = the room file's (or auto)
   bool brute_force = false;  ///< tests only: the brute-force intersector
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
+  /// Called once every input check has passed, before any tracing (the CLI prints its warnings then, so
+  /// that a refused run prints one line only).
+  std::function<void()> on_start;
 };
 
 struct RoomSimulation {
