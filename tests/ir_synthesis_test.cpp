@@ -85,18 +85,38 @@ EnergyResponse exponentialResponse(double t60_s, double start_s, double scale, d
   return r;
 }
 
-TEST(IrSynthesis, EnergyPerBinIsExactInWideBands) {
-  // Only the 4 kHz band holds energy; it is wider than 2 / bin_s, so it is normalised bin by bin and the
-  // synthesized signal (that band alone) carries each bin's energy exactly.
+// Only the 4 kHz band holds energy (wider than 2 / bin_s, so it is matched bin by bin). The band part
+// follows the histogram and stays inside the band's filter. Tolerances: 10 ms windows within 5 % (0.2 dB),
+// well inside what T20/T30 tolerate (a 5 % JND is 0.9 dB over a 0.3 s fit of this 75 dB/s decay), and the
+// total within 1 %. Out-of-band energy below 1e-4 (−40 dB): the gains act on the Diracs before the filter,
+// so only the truncation of the filter's ringing at the signal's start and end can put energy outside
+// (both ends lie far down: −60 dB of the ringing's ~1/(πBt) amplitude); gains applied after the filter
+// (this code's first version) spread ±30 % steps per 1 ms bin into sidebands of ~−20 dB.
+TEST(IrSynthesis, TracedEnergyFollowsTheHistogramAndStaysInItsBand) {
   EnergyResponse r = exponentialResponse(0.8, 0.02, 1.0, 1.0);
   const int k = r.bands.find(4000);
   for (int b = 0; b < r.bands.size(); ++b)
     if (b != k) std::fill(r.traced[b].begin(), r.traced[b].end(), 0.0);
   const std::vector<double> p = synthesize(r, kFs, 1.0, 200.0, 343.0, 7);
-  for (int i = 0; i < r.bins(); ++i) {
-    const double e = energy(p, static_cast<size_t>(48 * i), static_cast<size_t>(48 * (i + 1)));
-    EXPECT_NEAR(e, r.traced[k][i], 1e-9 * r.traced[k][20]) << "bin " << i;
+  const std::vector<double>& e = r.traced[k];
+  for (int w = 2; w < 90; ++w) {  // 10 ms windows, 20 ms … 900 ms
+    double want = 0.0;
+    for (int i = 10 * w; i < 10 * (w + 1); ++i) want += e[i];
+    EXPECT_NEAR(energy(p, static_cast<size_t>(480 * w), static_cast<size_t>(480 * (w + 1))) / want, 1.0, 0.05)
+        << "window at " << 10 * w << " ms";
   }
+  EXPECT_NEAR(energy(p) / std::accumulate(e.begin(), e.end(), 0.0), 1.0, 0.01);
+  const BandFilter filter(r.bands, kFs);
+  RealFft fft(fastFftLength(static_cast<long>(p.size())));
+  std::vector<std::complex<double>> spectrum;
+  fft.forward(p, spectrum);
+  double outside = 0.0, all = 0.0;
+  for (int j = 0; j < fft.bins(); ++j) {
+    const double power = std::norm(spectrum[j]);
+    all += power;
+    if (filter.gain(k, j * kFs / fft.size()) == 0.0) outside += power;
+  }
+  EXPECT_LT(outside / all, 1e-4);
 }
 
 TEST(IrSynthesis, ArrivalAtAFractionalDelayKeepsItsEnergyAndTime) {
