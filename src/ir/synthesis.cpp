@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <numeric>
+#include <utility>
 
 #include "diffray/core/error.h"
 #include "diffray/core/math.h"
@@ -74,13 +75,17 @@ void checkInputs(const EnergyResponse& r, double fs, double length_s, double vol
   }
 }
 
-/// Adds the traced part to `out`.
-void addTraced(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, double volume_m3, double c,
-               std::uint64_t seed, std::vector<double>& out) {
+/// One band's spectrum on that band's bins (BandGains::first on).
+using BandSpectrum = std::vector<std::complex<double>>;
+
+/// The traced part, `samples` long: each band part's spectrum on its band's bins (empty if none).
+std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, double volume_m3,
+                                      double c, std::uint64_t seed, long samples) {
   const double fs = filter.sampleRateHz();
-  const long n = static_cast<long>(out.size());
+  const long n = samples;
   const int bins = static_cast<int>(std::min<double>(r.bins(), std::ceil(static_cast<double>(n) / (fs * r.bin_s))));
-  if (bins <= 0) return;
+  std::vector<BandSpectrum> parts;
+  if (bins <= 0) return parts;
   const BinSpans spans = binSpans(bins, r.bin_s, fs, n);
   std::vector<double> d = poissonDiracs(n, fs, volume_m3, c, seed);
   core::Rng fill(seed, kStreamFill);
@@ -129,15 +134,37 @@ void addTraced(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, 
         if (xs > 0.0) g[i] *= std::sqrt(es / xs);
       }
     }
-    for (long s = 0; s < n; ++s) out[s] += db[s];
+    std::vector<std::complex<double>> spectrum;
+    fft.forward(db, spectrum);
+    const BandGains band = filter.gains(k, fft.size());
+    parts.emplace_back(spectrum.begin() + band.first, spectrum.begin() + band.first + static_cast<long>(band.w.size()));
   }
+  return parts;
 }
 
-/// Adds the arrivals to `out`, each at its exact delay.
-void addArrivals(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, std::vector<double>& out) {
+/// The rotation e^{−iφ} that makes a band part u orthogonal to a reference: Re(e^{−iφ}·⟨u, ref⟩) = 0,
+/// given cross = ⟨u, ref⟩ (1 if it is 0). Of the two such phases, the one nearer 0.
+std::complex<double> orthogonalRotation(std::complex<double> cross) {
+  if (!(std::abs(cross) > 0.0)) return {1.0, 0.0};
+  const double phi1 = std::arg(cross) - 0.5 * core::kPi, phi2 = std::arg(cross) + 0.5 * core::kPi;
+  const auto wrapped = [](double x) { return std::abs(std::remainder(x, core::kTwoPi)); };
+  return std::polar(1.0, -(wrapped(phi1) <= wrapped(phi2) ? phi1 : phi2));
+}
+
+std::complex<double> innerProduct(const BandSpectrum& u, const BandSpectrum& v) {
+  std::complex<double> sum(0.0, 0.0);
+  for (size_t j = 0; j < u.size(); ++j) sum += u[j] * std::conj(v[j]);
+  return sum;
+}
+
+/// The response: the arrivals, each at its exact delay, and the traced part (tracedParts' band spectra,
+/// or empty), phased within each band so that their energies add: the earliest arrival as it is, the
+/// traced part rotated to be orthogonal to it, every later arrival orthogonal to all before it.
+std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, RealFft& fft,
+                            std::vector<BandSpectrum> traced, long samples) {
   const double fs = filter.sampleRateHz();
   const int m = fft.size();
-  const double length_s = static_cast<double>(out.size()) / fs;
+  const double length_s = static_cast<double>(samples) / fs;
   std::vector<BandGains> gains;
   std::vector<double> band_energy;  // Σ_n (band b's impulse response)² = (2/m)·Σ_k W_b(k)² (W = 0 at 0, m/2)
   for (int b = 0; b < r.bands.size(); ++b) {
@@ -147,19 +174,23 @@ void addArrivals(const EnergyResponse& r, const BandFilter& filter, RealFft& fft
     band_energy.push_back(2.0 * sum / m);
     DIFFRAY_CHECK(band_energy.back() > 0.0);
   }
-  // Each band's part of the arrivals, on that band's bins, built in order of delay.
-  std::vector<std::vector<std::complex<double>>> part;
-  for (const BandGains& g : gains) part.emplace_back(g.w.size(), std::complex<double>(0.0, 0.0));
+  // Each band's part of the arrivals (on that band's bins, built in order of delay), and what an arrival
+  // is made orthogonal to: the band's traced part and the arrivals placed so far.
+  std::vector<BandSpectrum> part, reference;
+  for (size_t b = 0; b < gains.size(); ++b) {
+    part.emplace_back(gains[b].w.size(), std::complex<double>(0.0, 0.0));
+    reference.push_back(part.back());
+    DIFFRAY_CHECK(b >= traced.size() || traced[b].size() == part.back().size());
+  }
   std::vector<size_t> order(r.arrivals.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return r.arrivals[x].delay_s < r.arrivals[y].delay_s; });
-  bool any = false;
-  std::vector<std::complex<double>> u;
+  bool first = true;
+  BandSpectrum u;
   for (size_t index : order) {
     const Arrival& a = r.arrivals[index];
     if (a.delay_s >= length_s) continue;  // beyond the response: its energy is not in it
-    any = true;
     // e^{−2πi·k·τ·fs/m} by recurrence from the band's first bin: accurate to ~k·1e-16, ample here.
     const double phase_step = -core::kTwoPi * a.delay_s * fs / m;
     const std::complex<double> step = std::polar(1.0, phase_step);
@@ -172,26 +203,35 @@ void addArrivals(const EnergyResponse& r, const BandFilter& filter, RealFft& fft
       std::complex<double> z = std::polar(amplitude, phase_step * g.first);
       for (size_t j = 0; j < g.w.size(); ++j, z *= step) u[j] = g.w[j] * z;
       // The phase of the pulse in this band (a rotation e^{−iφ} of its positive-frequency spectrum: the
-      // same envelope, carrier shifted) chosen so that it is orthogonal to the arrivals before it:
-      // Re(e^{−iφ}·⟨u, part⟩) = 0, so that band energies add as the energy model says (see synthesis.h).
-      // Of the two such phases, the one nearer 0 (an in-phase reflection when nothing overlaps).
-      std::complex<double> cross(0.0, 0.0);
-      for (size_t j = 0; j < u.size(); ++j) cross += u[j] * std::conj(part[b][j]);
-      std::complex<double> rotation(1.0, 0.0);
-      if (std::abs(cross) > 0.0) {
-        const double phi1 = std::arg(cross) - 0.5 * core::kPi, phi2 = std::arg(cross) + 0.5 * core::kPi;
-        const auto wrapped = [](double x) { return std::abs(std::remainder(x, core::kTwoPi)); };
-        rotation = std::polar(1.0, -(wrapped(phi1) <= wrapped(phi2) ? phi1 : phi2));
+      // same envelope, carrier shifted) chosen so that it is orthogonal to what the band holds already:
+      // Re(e^{−iφ}·⟨u, reference⟩) = 0, so that band energies add as the energy model says (synthesis.h).
+      // The earliest arrival (the direct sound, when there is one) meets nothing and keeps phase 0, so
+      // its broadband pulse stays sharp: the onset (time zero of every metric) is found on it.
+      const std::complex<double> rotation = orthogonalRotation(innerProduct(u, reference[b]));
+      for (size_t j = 0; j < u.size(); ++j) {
+        part[b][j] += rotation * u[j];
+        reference[b][j] += rotation * u[j];
       }
-      for (size_t j = 0; j < u.size(); ++j) part[b][j] += rotation * u[j];
+    }
+    if (first) {
+      // The traced part (all of its envelope kept: a rotation of the carrier) made orthogonal to it.
+      for (size_t b = 0; b < traced.size(); ++b) {
+        const std::complex<double> rotation = orthogonalRotation(innerProduct(traced[b], part[b]));
+        for (size_t j = 0; j < traced[b].size(); ++j) {
+          traced[b][j] *= rotation;
+          reference[b][j] += traced[b][j];
+        }
+      }
+      first = false;
     }
   }
   std::vector<std::complex<double>> spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
-  for (int b = 0; b < r.bands.size(); ++b)
+  for (int b = 0; b < r.bands.size(); ++b) {
     for (size_t j = 0; j < part[b].size(); ++j) spectrum[gains[b].first + j] += part[b][j];
-  if (!any) return;
-  const std::vector<double> p = fft.inverse(spectrum, static_cast<long>(out.size()));
-  for (size_t s = 0; s < out.size(); ++s) out[s] += p[s];
+    if (static_cast<size_t>(b) < traced.size())
+      for (size_t j = 0; j < traced[b].size(); ++j) spectrum[gains[b].first + j] += traced[b][j];
+  }
+  return fft.inverse(spectrum, samples);
 }
 
 }  // namespace
@@ -223,10 +263,9 @@ std::vector<double> synthesize(const EnergyResponse& response, double sample_rat
   const long n = core::checkedCount("synthesis: samples", length_s * sample_rate_hz, 1u << 30);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(filter.fftLengthFor(n));
-  std::vector<double> out(static_cast<size_t>(n), 0.0);
-  if (!response.traced.empty()) addTraced(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, out);
-  addArrivals(response, filter, fft, out);
-  return out;
+  std::vector<BandSpectrum> traced;
+  if (!response.traced.empty()) traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n);
+  return combine(response, filter, fft, std::move(traced), n);
 }
 
 }  // namespace diffray::ir
