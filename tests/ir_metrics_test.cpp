@@ -129,7 +129,13 @@ TEST(IrMetrics, JsonAndTableShowMissingFiguresAsNullAndDash) {
   const core::Bands bands = core::Bands::octave(1000, 2000);
   BandMetrics a = metricsFromEnergy(exponentialHistogram(1.0, 1e-3, 2.5), 1e-3);
   BandMetrics b;  // all NaN
-  const nlohmann::json j = metricsJson(bands, {a, b});
+  const nlohmann::ordered_json j = metricsJson(bands, {a, b});
+  // Keys in band order, not sorted as strings (where "1000" < "125" would show).
+  const core::Bands octaves = core::Bands::octave();
+  const nlohmann::ordered_json all = metricsJson(octaves, std::vector<BandMetrics>(static_cast<size_t>(octaves.size())));
+  std::vector<std::string> keys;
+  for (const auto& item : all.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"63", "125", "250", "500", "1000", "2000", "4000", "8000"}));
   EXPECT_NEAR(j["1000"]["c80"].get<double>(), clarityDb(1.0, 0.08), 1e-6);
   EXPECT_TRUE(j["2000"]["t30"].is_null());
   for (const char* key : {"t20", "t30", "edt", "c50", "c80", "d50", "ts"}) EXPECT_TRUE(j["1000"].contains(key));

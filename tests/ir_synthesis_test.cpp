@@ -85,18 +85,38 @@ EnergyResponse exponentialResponse(double t60_s, double start_s, double scale, d
   return r;
 }
 
-TEST(IrSynthesis, EnergyPerBinIsExactInWideBands) {
-  // Only the 4 kHz band holds energy; it is wider than 2 / bin_s, so it is normalised bin by bin and the
-  // synthesized signal (that band alone) carries each bin's energy exactly.
+// Only the 4 kHz band holds energy (wider than 2 / bin_s, so it is matched bin by bin). The band part
+// follows the histogram and stays inside the band's filter. Tolerances: 10 ms windows within 5 % (0.2 dB),
+// well inside what T20/T30 tolerate (a 5 % JND is 0.9 dB over a 0.3 s fit of this 75 dB/s decay), and the
+// total within 1 %. Out-of-band energy below 1e-4 (−40 dB): the gains act on the Diracs before the filter,
+// so only the truncation of the filter's ringing at the signal's start and end can put energy outside
+// (both ends lie far down: −60 dB of the ringing's ~1/(πBt) amplitude); gains applied after the filter
+// (this code's first version) spread ±30 % steps per 1 ms bin into sidebands of ~−20 dB.
+TEST(IrSynthesis, TracedEnergyFollowsTheHistogramAndStaysInItsBand) {
   EnergyResponse r = exponentialResponse(0.8, 0.02, 1.0, 1.0);
   const int k = r.bands.find(4000);
   for (int b = 0; b < r.bands.size(); ++b)
     if (b != k) std::fill(r.traced[b].begin(), r.traced[b].end(), 0.0);
   const std::vector<double> p = synthesize(r, kFs, 1.0, 200.0, 343.0, 7);
-  for (int i = 0; i < r.bins(); ++i) {
-    const double e = energy(p, static_cast<size_t>(48 * i), static_cast<size_t>(48 * (i + 1)));
-    EXPECT_NEAR(e, r.traced[k][i], 1e-9 * r.traced[k][20]) << "bin " << i;
+  const std::vector<double>& e = r.traced[k];
+  for (int w = 2; w < 90; ++w) {  // 10 ms windows, 20 ms … 900 ms
+    double want = 0.0;
+    for (int i = 10 * w; i < 10 * (w + 1); ++i) want += e[i];
+    EXPECT_NEAR(energy(p, static_cast<size_t>(480 * w), static_cast<size_t>(480 * (w + 1))) / want, 1.0, 0.05)
+        << "window at " << 10 * w << " ms";
   }
+  EXPECT_NEAR(energy(p) / std::accumulate(e.begin(), e.end(), 0.0), 1.0, 0.01);
+  const BandFilter filter(r.bands, kFs);
+  RealFft fft(fastFftLength(static_cast<long>(p.size())));
+  std::vector<std::complex<double>> spectrum;
+  fft.forward(p, spectrum);
+  double outside = 0.0, all = 0.0;
+  for (int j = 0; j < fft.bins(); ++j) {
+    const double power = std::norm(spectrum[j]);
+    all += power;
+    if (filter.gain(k, j * kFs / fft.size()) == 0.0) outside += power;
+  }
+  EXPECT_LT(outside / all, 1e-4);
 }
 
 TEST(IrSynthesis, ArrivalAtAFractionalDelayKeepsItsEnergyAndTime) {
@@ -186,6 +206,91 @@ TEST(StatIrSynthesis, MetricsOfTheSynthesizedIrAgreeWithTheHistogram) {
                 std::sqrt(rms[b][4]), std::sqrt(rms[b][5]), 100 * std::sqrt(rms[b][6]));
     if (r.bands.nominalHz(b) < 1000) continue;
     for (int q = 0; q < 7; ++q) EXPECT_LE(std::abs(mean[b][q]), target[q]) << r.bands.label(b) << " #" << q;
+  }
+}
+
+// A shoebox-like response: decay times falling from 2.5 s (63, 125 Hz) to 0.7 s (8 kHz), so that each
+// band decays at its own rate beside neighbours decaying up to twice as slowly; a direct sound at 10 ms
+// (1 W at 3 m), a floor reflection 2 ms behind it (within the low bands' time resolution), a mirror-
+// symmetric pair of wall reflections at exactly the same delay, and later ones; the diffuse part starts
+// 3 ms after the direct sound. Criterion: ISO 3382-1:2009 Annex A, Table A.1 just-noticeable differences
+// (EDT, T20, T30 5 % relative; C50, C80 1 dB; D50 0.05; Ts 10 ms), between the metrics of the histogram
+// (metricsFromHistograms) and of the synthesized IR (metricsFromSignal).
+//  * The mean over 8 seeds, every band 125 Hz – 8 kHz: the synthesis must not be biased by a JND.
+//  * Each single realisation, bands ≥ 1 kHz: there a noise decay's own scatter (ISO 3382-2:2008 A.2,
+//    σ(T30)/T30 = 0.55·√((1 + 1.52/n)/(B·T30)) with n = 10 for an impulse response: 1.4 % at 1 kHz,
+//    T = 1.8 s; σ(T20) = 0.88·√((1 + 1.90/n)/(B·T20)): 2.3 %) is under a third of the JND. Below, one
+//    realisation scatters by a large part of a JND (T20 at 63 Hz: 8 %, at 250 Hz: 4 %), so a single IR
+//    cannot promise it there; its bias (the mean) is asserted from 125 Hz. 63 Hz: not asserted (a 45 Hz
+//    band rings for ~1/B = 22 ms, half the C50 window; printed).
+//  * EDT is printed, not asserted: here the direct sound and the first reflections take ~5 of its 10 dB,
+//    so its line is fitted to ~5 dB of diffuse decay (0.1 s at 2 kHz), and a slope fitted over a span D
+//    scatters as D^(−3/2): (20/5)^(3/2) = 8 times the T20's, well beyond the 5 % JND.
+EnergyResponse roomLikeResponse() {
+  EnergyResponse r;
+  r.bands = core::Bands::octave();
+  r.bin_s = 1e-3;
+  const double t60[8] = {2.5, 2.5, 2.4, 2.0, 1.8, 1.5, 1.1, 0.7};
+  const double direct_s = 0.010, diffuse_s = 0.013, length_s = 3.0;
+  const auto bins = static_cast<size_t>(std::lround(length_s / r.bin_s));
+  for (int b = 0; b < r.bands.size(); ++b) {
+    // Diffuse power at its start: that of a 210 m³ room's reverberant field, 4·W·T/(13.8·V)·c ≈ 0.5 J/m²/s·T.
+    const double k = 6.0 * std::log(10.0) / t60[b], level = 0.5 * t60[b];
+    std::vector<double> h(bins, 0.0);
+    for (size_t i = 0; i < bins; ++i) {
+      const double a = std::max(static_cast<double>(i) * r.bin_s, diffuse_s), e = static_cast<double>(i + 1) * r.bin_s;
+      if (e > diffuse_s) h[i] = level * (std::exp(-k * (a - diffuse_s)) - std::exp(-k * (e - diffuse_s))) / k;
+    }
+    r.traced.push_back(h);
+  }
+  const auto arrival = [&](double delay_s, double energy, int order) {
+    Arrival a;
+    a.delay_s = delay_s;
+    a.order = order;
+    for (int b = 0; b < r.bands.size(); ++b) a.energy[b] = energy * (order == 0 ? 1.0 : 1.0 - 0.05 * b);
+    r.arrivals.push_back(a);
+  };
+  arrival(direct_s, 1.0 / 9.0, 0);
+  arrival(direct_s + 0.002, 0.07, 1);   // floor
+  arrival(0.0191, 0.03, 1);             // the two side walls, same delay
+  arrival(0.0191, 0.03, 1);
+  arrival(0.0236, 0.025, 1);
+  arrival(0.0311, 0.012, 2);
+  arrival(0.0447, 0.008, 2);
+  return r;
+}
+
+TEST(StatIrSynthesis, RoomLikeResponseAgreesWithinOneJnd) {
+  const EnergyResponse r = roomLikeResponse();
+  std::vector<std::vector<double>> total;
+  for (int b = 0; b < r.bands.size(); ++b) total.push_back(r.total(b));
+  const std::vector<BandMetrics> ref = metricsFromHistograms(total, r.bin_s);
+  const std::array<double, 7> jnd{0.05, 0.05, 0.05, 1.0, 1.0, 0.05, 0.010};  // EDT T20 T30 C50 C80 D50 Ts
+  const char* names[7] = {"EDT", "T20", "T30", "C50", "C80", "D50", "Ts"};
+  const int seeds = 8, nb = r.bands.size();
+  std::vector<std::array<double, 7>> mean(static_cast<size_t>(nb), std::array<double, 7>{});
+  for (int s = 0; s < seeds; ++s) {
+    const std::vector<BandMetrics> m = metricsFromSignal(synthesize(r, kFs, 3.0, 210.0, 343.0, 300 + s), kFs, r.bands);
+    for (int b = 0; b < nb; ++b) {
+      // Errors in JNDs: relative for the decay times, absolute for the rest.
+      const std::array<double, 7> err{(m[b].edt / ref[b].edt - 1) / jnd[0], (m[b].t20 / ref[b].t20 - 1) / jnd[1],
+                                      (m[b].t30 / ref[b].t30 - 1) / jnd[2], (m[b].c50 - ref[b].c50) / jnd[3],
+                                      (m[b].c80 - ref[b].c80) / jnd[4],     (m[b].d50 - ref[b].d50) / jnd[5],
+                                      (m[b].ts - ref[b].ts) / jnd[6]};
+      for (int q = 0; q < 7; ++q) {
+        mean[b][q] += err[q] / seeds;
+        if (q > 0 && r.bands.nominalHz(b) >= 1000) {
+          EXPECT_LE(std::abs(err[q]), 1.0) << r.bands.label(b) << " Hz " << names[q] << ", seed " << 300 + s;
+        }
+      }
+    }
+  }
+  for (int b = 0; b < nb; ++b) {
+    std::printf("  %5s Hz mean error / JND:", r.bands.label(b).c_str());
+    for (int q = 0; q < 7; ++q) std::printf(" %s %+.2f", names[q], mean[b][q]);
+    std::printf("\n");
+    if (r.bands.nominalHz(b) < 125) continue;
+    for (int q = 1; q < 7; ++q) EXPECT_LE(std::abs(mean[b][q]), 1.0) << r.bands.label(b) << " Hz " << names[q];
   }
 }
 

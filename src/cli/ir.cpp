@@ -150,7 +150,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     audio::AudioBuffer buffer;
     buffer.sample_rate_hz = room.output.sample_rate_hz;
     buffer.channels = static_cast<int>(room.listeners.size());
-    nlohmann::json listeners = nlohmann::json::array();
+    nlohmann::ordered_json listeners = nlohmann::ordered_json::array();
     std::vector<std::vector<double>> channels;
     std::string table;
     for (std::size_t l = 0; l < room.listeners.size(); ++l) {
@@ -177,11 +177,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       for (long f = 0; f < frames; ++f) buffer.samples[f * buffer.channels + c] = channels[c][f];
     const double synth_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_synth).count();
 
-    nlohmann::json bands = nlohmann::json::array();
+    nlohmann::ordered_json bands = nlohmann::ordered_json::array();
     for (int b = 0; b < room.bands.size(); ++b) bands.push_back(room.bands.nominalHz(b));
     std::vector<std::string> all_warnings = warnings;
     all_warnings.insert(all_warnings.end(), sim.warnings.begin(), sim.warnings.end());
-    nlohmann::json side{
+    // ordered_json: band keys (and the sidecar's own) stay in the order written, not sorted as strings.
+    nlohmann::ordered_json side{
         {"diffray_version", DIFFRAY_VERSION},
         {"room", room.name},
         {"room_file", opts->room_file},

@@ -58,7 +58,7 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
     const core::Bands bands = bandsFor(o->bands, audio.sample_rate_hz, o->file);
     const auto metrics = ir::metricsFromSignal(audio.channel(o->channel - 1), audio.sample_rate_hz, bands);
     if (common.json) {
-      nlohmann::json j{{"file", o->file},
+      nlohmann::ordered_json j{{"file", o->file},
                        {"sample_rate_hz", audio.sample_rate_hz},
                        {"channels", audio.channels},
                        {"channel", o->channel},

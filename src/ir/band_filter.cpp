@@ -77,10 +77,11 @@ int fastFftLength(long n) {
   }
 }
 
-BandFilter::BandFilter(const core::Bands& bands, double sample_rate_hz, double crossover)
+BandFilter::BandFilter(const core::Bands& bands, double sample_rate_hz, double crossover, double max_transition_hz)
     : bands_(bands), fs_(sample_rate_hz) {
   core::requirePositive("sample rate", sample_rate_hz);
   if (!(crossover > 0.0 && crossover <= 1.0)) throw core::InputError("band filter", "crossover must lie in (0, 1]");
+  core::requirePositive("band filter: transition width", max_transition_hz);
   const int nb = bands.size();
   DIFFRAY_CHECK(nb >= 1);
   for (int b = 0; b < nb; ++b) {
@@ -93,7 +94,10 @@ BandFilter::BandFilter(const core::Bands& bands, double sample_rate_hz, double c
   for (int e = 0; e <= nb; ++e) {
     const double below = e > 0 ? edge_log_[e] - edge_log_[e - 1] : 1e300;
     const double above = e < nb ? edge_log_[e + 1] - edge_log_[e] : 1e300;
-    half_log_.push_back(crossover * 0.5 * std::min(below, above));
+    // The transition spans [e·10^−h, e·10^h], 2·sinh(h·ln10)·e wide in Hz: at most max_transition_hz.
+    const double edge_hz = std::pow(10.0, edge_log_[e]);
+    const double h_hz = std::asinh(0.5 * max_transition_hz / edge_hz) / std::log(10.0);
+    half_log_.push_back(std::min(crossover * 0.5 * std::min(below, above), h_hz));
   }
   if (std::pow(10.0, edge_log_[nb] + half_log_[nb]) >= 0.5 * fs_)
     throw core::InputError("bands", "band " + bands.label(nb - 1) + " Hz reaches the Nyquist frequency at " +

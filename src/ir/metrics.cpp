@@ -270,10 +270,12 @@ std::vector<BandMetrics> metricsFromHistograms(const std::vector<std::vector<dou
   return out;
 }
 
-nlohmann::json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics) {
+nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics) {
   DIFFRAY_CHECK(static_cast<int>(metrics.size()) == bands.size());
-  const auto value = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  nlohmann::json j = nlohmann::json::object();
+  const auto value = [](double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+  };
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (int b = 0; b < bands.size(); ++b) {
     const BandMetrics& m = metrics[b];
     j[bands.label(b)] = {{"t20", value(m.t20)}, {"t30", value(m.t30)}, {"edt", value(m.edt)},

@@ -58,8 +58,9 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
                                            const core::Bands& bands);
 
 /// {"125": {"t20": …, "t30": …, "edt": …, "c50": …, "c80": …, "d50": …, "ts": …, "decay_range_db": …}, …}
-/// keyed by nominal centre; NaN as null.
-nlohmann::json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
+/// keyed by nominal centre in band order (an ordered_json: a plain json object would sort "1000" before
+/// "125"); NaN as null. Embed it in ordered_json objects too, or the keys are sorted again.
+nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
 
 /// A text table, one row per band (T20 T30 EDT in s, C50 C80 in dB, D50, Ts in ms, decay range in dB),
 /// "-" where a figure is NaN, followed by a note on why when there is one.

@@ -5,20 +5,30 @@
 // a span is the energy (J/m²) of that span, band by band:
 //  * Traced (diffuse) part: a Poisson sequence of Diracs with random signs and rate
 //    μ(t) = min(4πc³t²/V, 10⁴ s⁻¹) (the density of image sources at time t in a room of volume V). Per
-//    band, each Dirac is weighted by √(E_b(bin)/Diracs in its bin), band-passed by the zero-phase
-//    BandFilter, and scaled so that Σ p_b² over a window of w_b bins around each bin equals the
-//    histogram's energy over that window; w_b spans 2 cycles of the band's bandwidth (w = 1, i.e. exactly
-//    Σ_bin p_b² = E_b(bin) as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz octaves at
-//    1 ms). Why not bin by bin everywhere: a band of bandwidth B cannot hold an envelope finer than
-//    ~1/B, so per-bin gains in narrow bands modulate the carrier, and the analysis filter of the metrics
-//    smears the result back with ±30 % error per bin (measured: T20 off by 4–7 % at 63 Hz–1 kHz, against
-//    ≈1–3 % with windows). A bin holding energy in which the Poisson draw put no Dirac gets one at a
-//    uniformly drawn time inside it, so that no energy is lost where the rate is low (the first
-//    milliseconds). Negative bin energies (signed-energy noise) are synthesised as zero.
+//    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter; the
+//    gains start at √(E_b(bin)/Diracs in its bin) and are corrected (six rounds, each a new filtering
+//    of the weighted Diracs) until Σ p_b² over a window of w_b bins around each bin equals the
+//    histogram's energy over that window; w_b spans 2 cycles of the band's bandwidth (w = 1, i.e. bin by
+//    bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz octaves at 1 ms). Why not bin
+//    by bin everywhere: a band of bandwidth B cannot hold an envelope finer than ~1/B. Why gains on the
+//    Diracs rather than on the filtered signal: the band part stays inside its filter's pass band, so no
+//    energy is modulated into the neighbouring bands (synthesis.cpp). Σ p_b² per window therefore matches
+//    to the convergence of the rounds, not to rounding. A bin holding energy in which the Poisson draw put
+//    no Dirac gets one at a uniformly drawn time inside it, so that no energy is lost where the rate is
+//    low (the first milliseconds). Negative bin energies (signed-energy noise) are synthesised as zero.
 //  * Arrivals (direct sound, image sources) are placed at their exact delays, fractional ones included:
-//    each is built in the frequency domain as Σ_b A_b·W_b(f)·e^{−2πifτ} with A_b chosen so that band b's
-//    part carries exactly the arrival's energy in that band (Parseval). They are not in the traced
-//    histogram (ir/response.h), so nothing is counted twice.
+//    each is built in the frequency domain as Σ_b A_b·W_b(f)·e^{−2πifτ}·e^{−iφ_b} with A_b chosen so that
+//    band b's part carries exactly the arrival's energy in that band (Parseval). The energy model adds
+//    arrivals' energies, i.e. treats them as incoherent; pulses that overlap within a band's time
+//    resolution (~1/B: 22 ms at 63 Hz; or coincide exactly, as mirror-symmetric image sources do) would
+//    otherwise interfere, up to twice or down to none of the summed energy; so do an arrival and the
+//    sparse early Diracs of the traced part (at 63 Hz the first 50 ms hold ~2 degrees of freedom: C50 of
+//    one realisation swung by up to 7 dB). So, in order of delay, each arrival's band part gets the
+//    carrier phase φ_b (envelope unchanged) that makes it orthogonal to what the band already holds (its
+//    traced part and the arrivals before it): the band energies then add exactly, as in the histogram. Of
+//    the two such phases the one nearer 0 is taken. The energy model carries no phase, so this is a
+//    choice the model leaves open, not a loss: the geometry's own phases are not modelled anyway.
+//    Arrivals are not in the traced histogram (ir/response.h), so nothing is counted twice.
 // Reproducible: the same (response, parameters, seed) gives the same samples. Thread-safe (no shared
 // state; FFTW planning is serialised).
 #include <cstdint>
