@@ -29,9 +29,6 @@ EmbreeScene::EmbreeScene(const Mesh& mesh) : object_of_triangle_(mesh.object_of_
   rtcSetDeviceErrorFunction(device_, embreeError, nullptr);
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  // Watertight traversal: a ray through a shared edge of a closed mesh must not slip out between the two
-  // triangles (without it about one ray in 30,000 leaves a tessellated room).
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
 
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,

@@ -39,9 +39,10 @@ core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, con
 
 namespace {
 
-// The longest T60 over the bands, from a short pilot trace (rays alone, 10 ms bins, up to max_length_s):
-// T20 of each band's decay summed over the listeners (T30 where the pilot's range allows, EDT where not
-// even T20 does), or NaN if no band decayed by 10 dB.
+// When the room's energy has fallen by 60 dB, the latest over the bands, from a short pilot trace (rays
+// alone, 10 ms bins, up to max_length_s): the energy still in flight in the room, whose level is read
+// where it first drops below −60 dB of its peak, or else extrapolated to −60 dB from a least-squares
+// line through its last 20 dB (a non-diffuse room's late decay is its slowest). NaN if no band decayed.
 double pilotT60(const room::Room& room, const RoomGeometry& geometry, const RoomSimulation& sim, std::uint64_t seed,
                 std::uint64_t rays) {
   RoomTraceOptions to;
@@ -52,17 +53,42 @@ double pilotT60(const room::Room& room, const RoomGeometry& geometry, const Room
   to.skip_order = -1;
   to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
   to.air_m_per_m = sim.air_m_per_m;
+  to.in_flight = true;
   const RoomTraceResult res = traceRoom(room, geometry, 0, to);
-  double longest = std::numeric_limits<double>::quiet_NaN();
+  double latest = std::numeric_limits<double>::quiet_NaN();
   for (int b = 0; b < room.bands.size(); ++b) {
-    std::vector<double> e(res.listeners[0].bins(), 0.0);
-    for (const auto& h : res.listeners)
-      for (int k = 0; k < h.bins(); ++k) e[k] += h.value(b, k);
-    const ir::BandMetrics m = ir::metricsFromEnergy(e, to.bin_s);
-    const double t = std::isfinite(m.t30) ? m.t30 : (std::isfinite(m.t20) ? m.t20 : m.edt);
-    if (std::isfinite(t) && !(t <= longest)) longest = t;
+    const std::vector<double> e = res.in_flight.band(b);
+    const double peak = *std::max_element(e.begin(), e.end());
+    if (!(peak > 0.0)) continue;
+    std::vector<double> level(e.size());
+    for (std::size_t k = 0; k < e.size(); ++k) level[k] = e[k] > 0.0 ? 10.0 * std::log10(e[k] / peak) : -1e300;
+    const auto time = [&](std::size_t k) { return (static_cast<double>(k) + 0.5) * to.bin_s; };
+    const std::size_t peak_k = static_cast<std::size_t>(std::max_element(e.begin(), e.end()) - e.begin());
+    std::size_t below = peak_k;  // first bin past the peak below −60 dB
+    while (below < e.size() && level[below] >= -60.0) ++below;
+    double t = below < e.size() ? time(below) : std::numeric_limits<double>::quiet_NaN();
+    if (!std::isfinite(t)) {
+      // Not reached in max_length_s: extrapolate the last 20 dB above the pilot's floor.
+      double lowest = 0.0;
+      for (std::size_t k = peak_k; k < e.size(); ++k) lowest = std::min(lowest, std::max(level[k], -60.0));
+      const double hi = std::min(-5.0, lowest + 20.0);
+      double n = 0, st = 0, sl = 0, stt = 0, stl = 0, t_last = 0, l_last = 0;
+      for (std::size_t k = peak_k; k < e.size(); ++k) {
+        if (level[k] > hi || level[k] < lowest) continue;
+        n += 1;
+        st += time(k);
+        sl += level[k];
+        stt += time(k) * time(k);
+        stl += time(k) * level[k];
+        t_last = time(k);
+        l_last = level[k];
+      }
+      const double slope = n >= 3 ? (n * stl - st * sl) / (n * stt - st * st) : 0.0;  // dB per second
+      if (slope < 0.0) t = t_last + (60.0 + l_last) / -slope;
+    }
+    if (std::isfinite(t) && !(t <= latest)) latest = t;
   }
-  return longest;
+  return latest;
 }
 
 // Rays of the pilot run: 20,000, fewer in rooms whose rays bounce very often (at most 1e8 wall hits).
@@ -135,8 +161,8 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     // absorbing floor and ceiling rings on between its hard walls for twice as long).
     const double per_ray = bouncesPerRay(room, room.output.max_length_s, sim.speed_of_sound_m_s);
     sim.pilot_t60_s = pilotT60(room, geometry, sim, options.seed, static_cast<std::uint64_t>(pilotRays(per_ray)));
-    const double decay_s = std::isfinite(sim.pilot_t60_s) ? sim.pilot_t60_s : 1.5 * sim.eyring_t60_s;
-    sim.length_s = std::min(room.output.max_length_s, 1.1 * decay_s + direct + 0.05);
+    const double decay_s = std::isfinite(sim.pilot_t60_s) ? sim.pilot_t60_s : 1.5 * sim.eyring_t60_s + direct;
+    sim.length_s = std::min(room.output.max_length_s, decay_s + 0.05);
   }
   // Refuse histograms too large for memory now, not after the image sources.
   histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
@@ -193,9 +219,9 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     sim.roulette_killed += res.roulette_killed;
     sim.timed_out += res.timed_out;
     sim.trace_seconds += res.seconds;
-    // A closed mesh loses about one ray in a million at edges hit within float rounding of a corner;
-    // a real gap or a source outside loses far more. Warn above 1e-5 (the count is in the stats anyway).
-    if (static_cast<double>(res.escaped) > 1e-5 * static_cast<double>(res.rays)) {
+    // A closed mesh loses up to about one ray in 100,000 where a hit lands within float rounding of a
+    // corner; a real gap or a source outside loses far more. Warn above 1e-4 (the count is in the stats).
+    if (static_cast<double>(res.escaped) > 1e-4 * static_cast<double>(res.rays)) {
       std::ostringstream w;
       w << "source " << room.sources[s].name << ": " << res.escaped << " of " << res.rays << " rays ("
         << 100.0 * static_cast<double>(res.escaped) / static_cast<double>(res.rays)

@@ -2,9 +2,9 @@
 // A whole room run (issue 2/5 rooms): the air (ISO 9613-1, room/air.h), the IR length, image sources up to
 // the room's order for every source–listener pair and rays for the rest (transport/image_sources.h and
 // room_tracer.h, which never count a path twice), summed over the sources into one ir::EnergyResponse per
-// listener. The length is the room file's, or "auto": 1.1 × the longest T60 over the bands, measured by a
-// pilot trace of 20,000 rays (Eyring's estimate misjudges non-diffuse rooms; 1.5 × Eyring if the pilot
-// cannot tell), plus the longest direct delay, capped at max_length_s: the decay has reached −60 dB. Warnings (rays lost through gaps, a source outside the room) are
+// listener. The length is the room file's, or "auto": the time at which the energy in flight in the room
+// has fallen by 60 dB in every band, measured by a pilot trace of up to 20,000 rays (Eyring's estimate
+// misjudges non-diffuse rooms; 1.5 × Eyring if the pilot cannot tell), capped at max_length_s. Warnings (rays lost through gaps, a source outside the room) are
 // returned, not thrown: the run goes on. Units: seconds, metres, J/m². Deterministic for a seed.
 #include <cstdint>
 #include <functional>
@@ -35,7 +35,7 @@ struct RoomSimulation {
   std::vector<receiver::EnergyHistogram> traced;      ///< the traced part with its standard errors
   double length_s = 0.0;
   double eyring_t60_s = 0.0;  ///< the longest band's Eyring estimate
-  double pilot_t60_s = std::numeric_limits<double>::quiet_NaN();  ///< "auto" length: the pilot's longest T60
+  double pilot_t60_s = std::numeric_limits<double>::quiet_NaN();  ///< "auto": when the pilot reached −60 dB
   double speed_of_sound_m_s = 0.0;
   core::BandArray air_m_per_m = core::bandFill(0.0);
   int ism_order = 0;

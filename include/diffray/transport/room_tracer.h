@@ -37,11 +37,15 @@ struct RoomTraceOptions {
   double speed_of_sound_m_s = 343.0;
   core::BandArray air_m_per_m = core::bandFill(0.0);  ///< energy attenuation per metre, per band
   std::function<void(std::uint64_t)> on_progress;     ///< rays done per chunk (thread-safe)
+  /// Also tally the energy in flight (RoomTraceResult::in_flight): what the room as a whole still holds
+  /// at each time, per band, integrated over each bin. Smooth with few rays: the pilot's decay estimate.
+  bool in_flight = false;
 };
 
 struct RoomTraceResult {
   std::vector<receiver::EnergyHistogram> listeners;  ///< per room listener, J/m² per bin
   std::vector<std::uint64_t> crossings;  ///< per listener: segments that crossed its sphere (scored or not)
+  receiver::EnergyHistogram in_flight;   ///< with RoomTraceOptions::in_flight: ∫ energy dt per band and bin
   std::uint64_t rays = 0;
   std::uint64_t segments = 0;       ///< intersection queries
   std::uint64_t escaped = 0;        ///< rays that left the geometry (a leak or a source outside)
