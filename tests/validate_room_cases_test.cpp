@@ -51,4 +51,13 @@ TEST(StatValidateRoom, DiffuseShoeboxT30IsEyringsWithinEightPercent) {
   for (const auto& row : r.rows) EXPECT_GT(row.traced, row.reference) << row.label;
 }
 
+TEST(ValidateRoom, DecayMetricsMatchTheClosedForms) {
+  // design.md §2's values through the histogram path (0.5 %), and the synthesized IRs within one ISO 3382-1
+  // JND (the case's documented wav target).
+  const auto r = runCase("decay-metrics", 0);
+  EXPECT_TRUE(r.passed) << r.detail;
+  EXPECT_LE(r.max_abs_error_rel_peak, 0.005);
+  EXPECT_LE(r.extra.at("wav_worst_error_over_target"), 1.0);
+}
+
 }  // namespace
