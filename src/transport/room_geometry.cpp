@@ -53,8 +53,11 @@ RoomGeometry::RoomGeometry(const room::Room& room, bool brute_force) {
   }
   if (brute_force)
     intersector_ = std::make_unique<geometry::BruteForceScene>(mesh);
-  else
-    intersector_ = std::make_unique<geometry::EmbreeScene>(mesh);
+  else {
+    auto scene = std::make_unique<geometry::EmbreeScene>(mesh);
+    embree_ = scene->handle();
+    intersector_ = std::move(scene);
+  }
 }
 
 }  // namespace diffray::transport

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -155,6 +156,49 @@ struct Tracer {
     }
   }
 
+  // The nearest surface along origin + t·dir: rtcIntersect1 straight on the Embree scene (this loop's
+  // hottest call), or the intersector (brute force, tests). `interior`: the hit's barycentrics are all
+  // above 1e-4, far from any edge compared with float rounding.
+  struct SegmentHit {
+    double t = 0.0;
+    int triangle = -1;
+    bool interior = false;
+    bool valid() const { return triangle >= 0; }
+  };
+  SegmentHit cast(const Vec3& o, const Vec3& d) const {
+    SegmentHit h;
+    const RTCScene scene = geometry.embreeScene();
+    if (!scene) {
+      const geometry::Hit g = geometry.intersector().intersect(geometry::Ray{o, d, 0.0, 1e300});
+      h.t = g.t;
+      h.triangle = g.valid() ? g.triangle : -1;
+      return h;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = static_cast<float>(o.x());
+    rh.ray.org_y = static_cast<float>(o.y());
+    rh.ray.org_z = static_cast<float>(o.z());
+    rh.ray.dir_x = static_cast<float>(d.x());
+    rh.ray.dir_y = static_cast<float>(d.y());
+    rh.ray.dir_z = static_cast<float>(d.z());
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    h.t = rh.ray.tfar;
+    h.triangle = static_cast<int>(rh.hit.primID);
+    h.interior = rh.hit.u > 1e-4f && rh.hit.v > 1e-4f && 1.0f - rh.hit.u - rh.hit.v > 1e-4f;
+    return h;
+  }
+
   // The energy the ray holds over the segment [path_m, path_m + length), spread over the time bins it
   // spans (air absorption at the segment's start: the pilot needs the decay, not a precise level).
   void addInFlight(RoomTraceResult& acc, double path_m, double length, const core::BandArray& energy) const {
@@ -180,26 +224,33 @@ struct Tracer {
     int order = 0;
     bool specular_chain = true;
     const double e_start = *std::max_element(e.begin(), e.begin() + bands);
-    const geometry::Intersector& isect = geometry.intersector();
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
       // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
-      geometry::Hit hit = isect.intersect(geometry::Ray{pos, dir, 0.0, 1e300});
+      SegmentHit hit = cast(pos, dir);
       ++acc.segments;
       if (!hit.valid()) {
         // Embree's fast (non-watertight) traversal can let a ray through the shared edge of two triangles:
         // about one ray in 30,000 in a finely tessellated room. Escapes are rare, so look again along a
         // direction turned by ~1e-6 rad before believing one (a real opening lets the retry out too).
         const Vec3 nudged = (dir + 1e-6 * Vec3(dir.y() - dir.z(), dir.z() - dir.x(), dir.x() - dir.y())).normalized();
-        hit = isect.intersect(geometry::Ray{pos, nudged, 0.0, 1e300});
+        hit = cast(pos, nudged);
         ++acc.segments;
       }
-      // Embree's distance is float; refined in double on the triangle's plane, so a hit within float
-      // rounding of a corner does not land outside the neighbouring wall (that lets rays slip out).
+      // Embree's distance is float. Well inside a triangle the hit point is put back on its plane by a
+      // projection (no division on the critical path); near an edge the distance is refined in double on
+      // the plane instead, so a hit within float rounding of a corner cannot land outside the
+      // neighbouring wall (which would let the ray slip out).
       double t_hit = 1e300;
+      bool project = false;
       if (hit.valid()) {
-        t_hit = geometry.planeDistance(hit.triangle, pos, dir);
-        if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
+        if (hit.interior) {
+          t_hit = hit.t;
+          project = true;
+        } else {
+          t_hit = geometry.planeDistance(hit.triangle, pos, dir);
+          if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
+        }
       }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
@@ -216,6 +267,7 @@ struct Tracer {
       path_m += t_hit;
       pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
+      if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (materials.opening[m]) {  // a hole: go on as if nothing were there

@@ -4,6 +4,8 @@
 // material, and the triangles grouped into planes (coplanar triangles share one image-source plane).
 // Embree's float hit distance is refined in double against the triangle's plane, so reflected rays start
 // exactly on the surface. Built once; thread-safe for concurrent queries.
+#include <embree3/rtcore.h>
+
 #include <memory>
 #include <vector>
 
@@ -33,6 +35,8 @@ class RoomGeometry {
   explicit RoomGeometry(const room::Room& room, bool brute_force = false);
 
   const geometry::Intersector& intersector() const { return *intersector_; }
+  /// The Embree scene for direct rtcIntersect1 calls in hot loops, or nullptr (brute force).
+  RTCScene embreeScene() const { return embree_; }
   const TrianglePlane& triangle(int i) const { return triangles_[i]; }
   const std::vector<MirrorPlane>& planes() const { return planes_; }
   /// Largest coordinate extent of the room (m): scale for offsets and tolerances.
@@ -45,6 +49,7 @@ class RoomGeometry {
 
  private:
   std::unique_ptr<geometry::Intersector> intersector_;
+  RTCScene embree_ = nullptr;
   std::vector<TrianglePlane> triangles_;
   std::vector<MirrorPlane> planes_;
   double extent_ = 1.0;
