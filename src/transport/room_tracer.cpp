@@ -136,6 +136,8 @@ struct Tracer {
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
   double eps_m = 0.0;
+  std::vector<double> air_table;     ///< [bin][band]: e^{−m_b·s_k}, s_k the path length at bin k's centre
+  std::vector<double> air_centre_m;  ///< s_k
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored.
@@ -151,8 +153,15 @@ struct Tracer {
       if (bin < 0) continue;
       // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
       const double w = spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
-      for (int b = 0; b < bands; ++b)
-        acc.listeners[l].add(b, bin, energy[b] * std::exp(-opt.air_m_per_m[b] * s_mid) * w);
+      // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
+      // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
+      // error below 2e-8, no exp per band in the hot loop.
+      const double ds = s_mid - air_centre_m[bin];
+      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(bands)];
+      for (int b = 0; b < bands; ++b) {
+        const double x = opt.air_m_per_m[b] * ds;
+        acc.listeners[l].add(b, bin, energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w);
+      }
     }
   }
 
@@ -326,13 +335,18 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0};
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}};
   for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
   tr.max_path_m = options.length_s * options.speed_of_sound_m_s;
-  tr.eps_m = 1e-6 * geometry.extent();  // 15× the float rounding of a coordinate: no self-hits
+  tr.eps_m = 1e-6 * geometry.extent();
+  for (int k = 0; k < tr.bins; ++k) {
+    const double s_k = (k + 0.5) * options.bin_s * options.speed_of_sound_m_s;
+    tr.air_centre_m.push_back(s_k);
+    for (int b = 0; b < tr.bands; ++b) tr.air_table.push_back(std::exp(-options.air_m_per_m[b] * s_k));
+  }  // 15× the float rounding of a coordinate: no self-hits
 
   const Vec3 axis = src.directivity.axis.normalized();
 
