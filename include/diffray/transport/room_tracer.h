@@ -5,8 +5,8 @@
 // the band-mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert (cosine lobe)
 // with the band-mean scattering probability, else specular; the band energies are reweighted by the
 // per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF occluder, next issue,
-// is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1)
-// is applied along the path; Russian roulette below `roulette_level` of the emitted energy keeps the
+// is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1) is applied at scoring,
+// from the path length d; Russian roulette below `roulette_level` of the emitted energy keeps the
 // estimator unbiased. Listener spheres score the track length inside them (receiver/sphere.h) into band ×
 // time histograms, time = path length / c.
 // Paths made only of specular reflections (no transmission, no diffuse bounce) of order ≤ skip_order are
