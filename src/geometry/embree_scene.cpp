@@ -57,21 +57,7 @@ EmbreeScene::~EmbreeScene() {
 Hit EmbreeScene::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray.org_x = static_cast<float>(ray.origin.x());
-  rh.ray.org_y = static_cast<float>(ray.origin.y());
-  rh.ray.org_z = static_cast<float>(ray.origin.z());
-  rh.ray.dir_x = static_cast<float>(ray.dir.x());
-  rh.ray.dir_y = static_cast<float>(ray.dir.y());
-  rh.ray.dir_z = static_cast<float>(ray.dir.z());
-  rh.ray.tnear = static_cast<float>(ray.tnear);
-  rh.ray.tfar = ray.tfar > 3e38 ? std::numeric_limits<float>::infinity() : static_cast<float>(ray.tfar);
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = makeRayHit(ray.origin, ray.dir, ray.tnear, ray.tfar);
   rtcIntersect1(scene_, &context, &rh);
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/rng.h"
+#include "diffray/geometry/embree_scene.h"
 
 namespace diffray::transport {
 
@@ -185,21 +185,7 @@ struct Tracer {
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray.org_x = static_cast<float>(o.x());
-    rh.ray.org_y = static_cast<float>(o.y());
-    rh.ray.org_z = static_cast<float>(o.z());
-    rh.ray.dir_x = static_cast<float>(d.x());
-    rh.ray.dir_y = static_cast<float>(d.y());
-    rh.ray.dir_z = static_cast<float>(d.z());
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
     rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.t = rh.ray.tfar;

@@ -5,9 +5,32 @@
 // hit point in double from the object's plane. Errors reported by Embree's callback become InternalError.
 #include <embree3/rtcore.h>
 
+#include <limits>
+
 #include "diffray/geometry/mesh.h"
 
 namespace diffray::geometry {
+
+/// An RTCRayHit ready for rtcIntersect1: the ray in float, no hit yet. Inline: hot loops call Embree
+/// directly (transport/room_tracer.cpp) as well as through EmbreeScene::intersect.
+inline RTCRayHit makeRayHit(const core::Vec3& origin, const core::Vec3& dir, double tnear, double tfar) {
+  RTCRayHit rh;
+  rh.ray.org_x = static_cast<float>(origin.x());
+  rh.ray.org_y = static_cast<float>(origin.y());
+  rh.ray.org_z = static_cast<float>(origin.z());
+  rh.ray.dir_x = static_cast<float>(dir.x());
+  rh.ray.dir_y = static_cast<float>(dir.y());
+  rh.ray.dir_z = static_cast<float>(dir.z());
+  rh.ray.tnear = static_cast<float>(tnear);
+  rh.ray.tfar = tfar > 3e38 ? std::numeric_limits<float>::infinity() : static_cast<float>(tfar);
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
 
 class EmbreeScene : public Intersector {
  public:
