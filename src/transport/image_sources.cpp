@@ -92,11 +92,7 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
     throw core::InputError("output.ism_order", why.str());
   }
   Validator v{room, geometry, {}};
-  for (const auto& m : room.materials) {
-    bool open = true;
-    for (int b = 0; b < room.bands.size(); ++b) open = open && m.transmission[b] >= 1.0 - 1e-12;
-    v.opening.push_back(open ? 1 : 0);
-  }
+  for (int m = 0; m < static_cast<int>(room.materials.size()); ++m) v.opening.push_back(room.isOpening(m) ? 1 : 0);
   const room::Source& src = room.sources[source];
   const Vec3 s = src.position_m, l = room.listeners[listener].position_m;
   const Vec3 axis = src.directivity.axis.normalized();

@@ -15,18 +15,37 @@
 
 namespace diffray::transport {
 
-core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, const core::BandArray& air_m_per_m) {
-  const int nb = room.bands.size();
-  core::BandArray absorbed = core::bandFill(0.0);
+namespace {
+
+// Per band, Σ area·α and Σ area·τ over the room's triangles, and the total area (m²).
+struct SurfaceSums {
+  core::BandArray absorbed = core::bandFill(0.0), transmitted = core::bandFill(0.0);
   double area = 0.0;
+};
+
+SurfaceSums surfaceSums(const room::Room& room) {
+  SurfaceSums sums;
   const auto& mesh = room.mesh;
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const auto& t = mesh.triangles[i];
     const double a = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-    area += a;
+    sums.area += a;
     const room::Material& m = room.materials[mesh.object_of_triangle[i]];
-    for (int b = 0; b < nb; ++b) absorbed[b] += a * m.absorption[b];
+    for (int b = 0; b < room.bands.size(); ++b) {
+      sums.absorbed[b] += a * m.absorption[b];
+      sums.transmitted[b] += a * m.transmission[b];
+    }
   }
+  return sums;
+}
+
+}  // namespace
+
+core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, const core::BandArray& air_m_per_m) {
+  const int nb = room.bands.size();
+  const SurfaceSums sums = surfaceSums(room);
+  const core::BandArray& absorbed = sums.absorbed;
+  const double area = sums.area;
   const double volume = room.volume();
   core::BandArray t60 = core::bandFill(0.0);
   for (int b = 0; b < nb; ++b) {
@@ -100,16 +119,9 @@ double bouncesPerRay(const room::Room& room, double length_s, double c) {
   const double volume = room.volume(), area = room.surfaceArea();
   if (!(volume > 0.0) || !(area > 0.0)) return length_s * c;  // no enclosure: a 1 m free path as the bound
   const double by_length = length_s * c / (4.0 * volume / area);
-  core::BandArray absorbed = core::bandFill(0.0);
-  const auto& mesh = room.mesh;
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const auto& t = mesh.triangles[i];
-    const double a = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-    const room::Material& m = room.materials[mesh.object_of_triangle[i]];
-    for (int b = 0; b < room.bands.size(); ++b) absorbed[b] += a * (m.absorption[b] - m.transmission[b]);
-  }
-  double least = 1.0;
-  for (int b = 0; b < room.bands.size(); ++b) least = std::min(least, absorbed[b] / area);
+  const SurfaceSums sums = surfaceSums(room);
+  double least = 1.0;  // the smallest mean fraction that leaves the room for good at a hit: α − τ
+  for (int b = 0; b < room.bands.size(); ++b) least = std::min(least, (sums.absorbed[b] - sums.transmitted[b]) / area);
   const double by_roulette = least > 0.0 ? std::log(1e6) / -std::log1p(-std::min(least, 1.0 - 1e-12)) : 1e300;
   return std::min(by_length, by_roulette);
 }

@@ -74,14 +74,13 @@ struct MaterialTable {
 MaterialTable makeMaterials(const room::Room& room) {
   MaterialTable t;
   const int nb = room.bands.size();
-  for (const room::Material& m : room.materials) {
+  for (int index = 0; index < static_cast<int>(room.materials.size()); ++index) {
+    const room::Material& m = room.materials[index];
     double mean_r = 0, mean_t = 0, mean_rs = 0;
-    bool open = true;
     for (int b = 0; b < nb; ++b) {
       mean_r += (1.0 - m.absorption[b]) / nb;
       mean_t += m.transmission[b] / nb;
       mean_rs += (1.0 - m.absorption[b]) * m.scattering[b] / nb;
-      open = open && m.transmission[b] >= 1.0 - 1e-12;
     }
     const double p_r = mean_r + mean_t > 0 ? mean_r / (mean_r + mean_t) : 1.0;
     const double p_s = mean_r > 0 ? mean_rs / mean_r : 0.0;  // reflected-energy-weighted mean scattering
@@ -97,7 +96,7 @@ MaterialTable makeMaterials(const room::Room& room) {
     t.w_transmit.push_back(wt);
     t.w_diffuse.push_back(wd);
     t.w_specular.push_back(ws);
-    t.opening.push_back(open ? 1 : 0);
+    t.opening.push_back(room.isOpening(index) ? 1 : 0);
     t.absorbing.push_back(mean_r + mean_t > 0 ? 0 : 1);
   }
   return t;
