@@ -6,11 +6,11 @@
 //    the rule used for C50/C80 is |error| ≤ max(0.5 % of |value|, 0.005 dB).
 //  * wav: the metrics of impulse responses synthesized from the histogram (ir/synthesis.h, 48 kHz, rounded
 //    to float32 as a WAV stores them), mean over 4 seeds, bands 1–8 kHz. A noise-based IR cannot meet
-//    0.5 % (its metrics scatter like a measurement's), so its target is the criterion diffray uses for the
-//    agreement of WAV and histogram metrics: one just-noticeable difference of ISO 3382-1:2009 Table A.1
-//    (T20/T30/EDT 5 %, C50/C80 1 dB, D50 0.05, Ts 10 ms). Lower bands are reported in `extra`, not scored.
-//    (The synthesis's band crossovers and phasing were tuned for rooms with that criterion; on these
-//    decays its worst figure is Ts, 3.7 % = 1.3 ms at T = 0.5 s.)
+//    0.5 % (its metrics scatter like a measurement's), so its target is issue 3's synthesis agreement:
+//    T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %. Lower bands are reported in `extra`, not scored.
+//    Since the synthesis was reworked for rooms (narrow crossovers, energy-additive phasing), this path
+//    misses that target on Ts: 3.7 % at T = 0.5 s (1.3 ms, a tenth of the 10 ms ISO 3382-1 JND). The case
+//    reports that as a miss rather than relaxing the target; `detail` says which path missed.
 // Rows: x_m = T (s), y_m = band centre (Hz), label "T=… path band metric".
 #include <chrono>
 #include <cmath>
@@ -37,18 +37,16 @@ std::array<double, 7> closedForm(double t60) {
           1.0 - std::exp(-0.05 * k), 1.0 / k};
 }
 
-/// Error and tolerance of metric q: relative for times and D50 on the hist path, dB for C50/C80; on the wav
-/// path one ISO 3382-1 JND (relative for T20/T30/EDT, absolute for C50/C80, D50 and Ts).
+/// Error and tolerance of metric q: relative for times and D50 on the hist path, dB for C50/C80.
 struct Score {
   double error = 0.0, tolerance = 0.0;
 };
 
 Score score(int q, double got, double want, bool wav) {
   if (!std::isfinite(got)) return {HUGE_VAL, 1.0};
-  if (q == 3 || q == 4) return {std::abs(got - want), wav ? 1.0 : std::max(0.005 * std::abs(want), 0.005)};
-  if (q == 5) return wav ? Score{std::abs(got - want), 0.05} : Score{std::abs(got / want - 1.0), 0.005};
-  if (q == 6 && wav) return {std::abs(got - want), 0.010};  // Ts: 10 ms
-  return {std::abs(got / want - 1.0), wav ? 0.05 : 0.005};
+  if (q == 3 || q == 4) return {std::abs(got - want), wav ? 0.5 : std::max(0.005 * std::abs(want), 0.005)};
+  if (q == 5) return wav ? Score{std::abs(got - want), 0.02} : Score{std::abs(got / want - 1.0), 0.005};
+  return {std::abs(got / want - 1.0), wav ? (q == 6 ? 0.03 : 0.02) : 0.005};
 }
 
 }  // namespace
@@ -116,7 +114,7 @@ CaseInfo decayMetricsCase() {
         for (int q = 0; q < 7; ++q) {
           const Score s = score(q, mean[b][q], want[q], true);
           const std::string name = tag + "wav " + resp.bands.label(b) + " " + kNames[q];
-          r.extra[name + (q == 3 || q == 4 || q == 5 || q == 6 ? " error" : " rel error")] = s.error;  // Ts: seconds on this path
+          r.extra[name + (q == 3 || q == 4 || q == 5 ? " error" : " rel error")] = s.error;
           if (!scored) continue;
           Row row;
           row.x_m = t60;
@@ -135,6 +133,10 @@ CaseInfo decayMetricsCase() {
     r.extra["wav_worst_error_over_target"] = worst_wav_over_target;
     r.rays = 0;
     r.passed = passed;
+    r.detail = std::string("histogram path: worst ") + std::to_string(100 * worst_hist).substr(0, 6) +
+               " % (0.5 % allowed); synthesized-WAV path: worst " +
+               std::to_string(worst_wav_over_target).substr(0, 5) + " x its target" +
+               (worst_wav_over_target > 1.0 ? " (MISSED)" : "");
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
