@@ -35,7 +35,21 @@ struct IrOptions {
   int ism_order = -2;
   double length_s = 0;
   std::string plot;
+  std::string diffraction = "none";
+  int diffraction_order = 1;
 };
+
+// Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (design.md §1:
+// report it rather than clamp it silently; the synthesis reads negative bins as silence).
+double negativeFraction(const std::vector<std::vector<double>>& traced) {
+  double neg = 0.0, all = 0.0;
+  for (const auto& band : traced)
+    for (double e : band) {
+      all += std::abs(e);
+      if (e < 0.0) neg -= e;
+    }
+  return all > 0.0 ? neg / all : 0.0;
+}
 
 std::string withExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
@@ -101,6 +115,16 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       ->check(CLI::Range(1e-3, 120.0));
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
+  sub->add_option("--diffraction", opts->diffraction,
+                  "none: geometric acoustics (doorways pass rays straight); wbsdf: rays diffract at the room's "
+                  "occluders (rooms/README.md)")
+      ->check(CLI::IsMember({"none", "wbsdf"}))
+      ->capture_default_str();
+  sub->add_option("--diffraction-order", opts->diffraction_order,
+                  "wbsdf: occluder scatterings per ray path; later crossings pass straight (each one multiplies "
+                  "the noise of the signed weights)")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -135,6 +159,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     so.seed = common.seed;
     so.ism_order = opts->ism_order;
     so.length_s = opts->length_s;
+    so.diffraction = opts->diffraction;
+    so.max_diffractions = opts->diffraction_order;
     const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
     core::Progress progress("ir " + room.name, rays * room.sources.size());
     so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
@@ -166,6 +192,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                            {"position_m", {li.position_m.x(), li.position_m.y(), li.position_m.z()}},
                            {"radius_m", li.radius_m},
                            {"image_sources", resp.arrivals.size()},
+                           {"negative_energy_fraction", negativeFraction(resp.traced)},
                            {"bands", ir::metricsJson(room.bands, from_hist)},
                            {"bands_from_wav", ir::metricsJson(room.bands, from_wav)}});
       table += "listener " + li.name + " (from the energy histogram):\n" + ir::metricsTable(room.bands, from_hist);
@@ -197,6 +224,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"rays", sim.rays},
         {"threads", core::ThreadLimit::current()},
         {"ism_order", sim.ism_order},
+        {"diffraction", opts->diffraction},
+        {"diffraction_order", opts->diffraction_order},
+        {"occluders", room.occluders.size()},
         {"image_sources", sim.image_sources},
         {"speed_of_sound_m_s", sim.speed_of_sound_m_s},
         {"volume_m3", room.volume()},
@@ -207,6 +237,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
           {"escaped", sim.escaped},
           {"roulette_killed", sim.roulette_killed},
           {"timed_out", sim.timed_out},
+          {"occluder_events", sim.occluder_events},
+          {"evanescent", sim.evanescent},
           {"queries_per_ray", sim.rays ? static_cast<double>(sim.segments) / static_cast<double>(sim.rays) : 0.0}}},
         {"timing_s", {{"trace", sim.trace_seconds}, {"image_sources", sim.ism_seconds}, {"synthesis_and_metrics", synth_s}}},
         {"warnings", all_warnings},

@@ -11,6 +11,7 @@
 #include "diffray/room/json_fields.h"
 #include "diffray/room/materials.h"
 #include "diffray/room/obj.h"
+#include "diffray/room/occluder_file.h"
 
 namespace diffray::room {
 namespace {
@@ -287,7 +288,7 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
   const nlohmann::json doc = parseJsonText(text, file);
   const JsonField top(doc, file);
   top.allowKeys({"name", "description", "bands", "materials_library", "materials", "geometry", "sources",
-                 "listeners", "air", "output"});
+                 "listeners", "occluders", "air", "output"});
   std::vector<std::string> local_warnings;
   Room room;
   room.file = file;
@@ -310,6 +311,8 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
   p.geometry(top["geometry"]);
   p.sources(top["sources"]);
   p.listeners(top["listeners"]);
+  if (top.has("occluders"))
+    parseOccluders(top["occluders"], room, [&p](const JsonField& ref) { return p.resolve(ref); }, local_warnings);
   if (top.has("air")) p.air(top["air"]);
   if (top.has("output")) p.output(top["output"]);
   if (warnings) {

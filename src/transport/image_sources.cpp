@@ -18,6 +18,7 @@ struct Validator {
   const room::Room& room;
   const RoomGeometry& geometry;
   std::vector<char> opening;  ///< per material: transmits everything
+  const std::vector<char>* blocking = nullptr;  ///< per triangle: blocks even if an opening
 
   // First hit along from → from + dist·dir that is not an opening: its triangle and distance, or −1.
   int firstSurface(const Vec3& from, const Vec3& dir, double max_t, double& t_out) const {
@@ -28,7 +29,7 @@ struct Validator {
       if (!hit.valid()) return -1;
       double t = geometry.planeDistance(hit.triangle, from, dir);
       if (!(t > 0.0 && t < 1e300)) t = hit.t;
-      if (!opening[geometry.triangle(hit.triangle).material]) {
+      if (!opening[geometry.triangle(hit.triangle).material] || (blocking && (*blocking)[hit.triangle])) {
         t_out = t;
         return hit.triangle;
       }
@@ -91,7 +92,7 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
         << " image-source candidates, more than the limit of " << options.max_candidates << "; lower it";
     throw core::InputError("output.ism_order", why.str());
   }
-  Validator v{room, geometry, {}};
+  Validator v{room, geometry, {}, options.blocking_triangles};
   for (int m = 0; m < static_cast<int>(room.materials.size()); ++m) v.opening.push_back(room.isOpening(m) ? 1 : 0);
   const room::Source& src = room.sources[source];
   const Vec3 s = src.position_m, l = room.listeners[listener].position_m;

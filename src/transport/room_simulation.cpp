@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -161,6 +162,16 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   for (const auto& s : room.sources)
     for (const auto& l : room.listeners) direct = std::max(direct, (s.position_m - l.position_m).norm() / sim.speed_of_sound_m_s);
   const RoomGeometry geometry(room, options.brute_force);
+  if (options.diffraction != "none" && options.diffraction != "wbsdf")
+    throw core::InputError("--diffraction", "must be none or wbsdf here, got " + options.diffraction);
+  std::unique_ptr<RoomOccluders> occluders;
+  if (options.diffraction == "wbsdf") {
+    if (room.occluders.empty())
+      sim.warnings.push_back("--diffraction wbsdf: the room has no occluders (rooms/README.md, \"occluders\"); "
+                             "nothing diffracts");
+    else
+      occluders = std::make_unique<RoomOccluders>(room, sim.speed_of_sound_m_s / room.bands.upperHz(nb - 1));
+  }
   sim.length_s = options.length_s > 0 ? options.length_s : room.output.ir_length_s;
   const bool automatic = !(sim.length_s > 0);
   // Refuse work that would not end in reasonable time, before any of it starts: a lossless or tiny room
@@ -192,6 +203,7 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     io.length_s = sim.length_s;
     io.speed_of_sound_m_s = sim.speed_of_sound_m_s;
     io.air_m_per_m = sim.air_m_per_m;
+    if (occluders) io.blocking_triangles = &occluders->triangleMask();
     for (int s = 0; s < static_cast<int>(room.sources.size()); ++s)
       for (int l = 0; l < static_cast<int>(room.listeners.size()); ++l) {
         auto arrivals = imageSources(room, geometry, s, l, io);
@@ -214,6 +226,8 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
   to.air_m_per_m = sim.air_m_per_m;
   to.on_progress = options.on_progress;
+  to.occluders = occluders.get();
+  to.max_diffractions = options.max_diffractions;
   std::vector<std::uint64_t> crossings;
   for (int s = 0; s < static_cast<int>(room.sources.size()); ++s) {
     to.seed = options.seed + 1000003ull * static_cast<std::uint64_t>(s);  // independent streams per source
@@ -230,6 +244,8 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     sim.escaped += res.escaped;
     sim.roulette_killed += res.roulette_killed;
     sim.timed_out += res.timed_out;
+    sim.occluder_events += res.occluder_events;
+    sim.evanescent += res.evanescent;
     sim.trace_seconds += res.seconds;
     // A closed mesh loses up to about one ray in 100,000 where a hit lands within float rounding of a
     // corner; a real gap or a source outside loses far more. Warn above 1e-4 (the count is in the stats).

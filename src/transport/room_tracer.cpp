@@ -31,6 +31,8 @@ void RoomTraceResult::merge(const RoomTraceResult& o) {
   escaped += o.escaped;
   roulette_killed += o.roulette_killed;
   timed_out += o.timed_out;
+  occluder_events += o.occluder_events;
+  evanescent += o.evanescent;
 }
 
 int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners) {
@@ -210,14 +212,71 @@ struct Tracer {
     }
   }
 
-  void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
-                 const core::BandArray& energy0) const {
-    Vec3 pos = start, dir = dir0;
-    core::BandArray e = energy0;
+  // The state of one path: where it is, where it goes, its band energies (a single band after a WBSDF
+  // occluder split it, `band` ≥ 0 with wavelength `lambda_m`), and what decides its scoring.
+  struct Path {
+    Vec3 pos, dir;
+    core::BandArray e;
     double path_m = 0.0;
     int order = 0;
     bool specular_chain = true;
-    const double e_start = *std::max_element(e.begin(), e.begin() + bands);
+    int band = -1;
+    double lambda_m = 0.0;
+    int diffractions = 0;
+    double e_start = 0.0;  ///< the level Russian roulette is relative to
+  };
+
+  void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
+                 const core::BandArray& energy0) const {
+    Path s{start, dir0, energy0};
+    s.e_start = *std::max_element(s.e.begin(), s.e.begin() + bands);
+    follow(acc, rng, s);
+  }
+
+  // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
+  // times their count keeps every band unbiased), at one frequency drawn uniformly inside the band
+  // (design.md §2). One band rather than a split into all of them: a split multiplies the work after a
+  // doorway by the band count (5× slower on two-rooms) for the same variance per unit of time.
+  void chooseBand(core::FastRng& rng, Path& s) const {
+    int live[core::kMaxBands], n = 0;
+    for (int b = 0; b < bands; ++b)
+      if (s.e[b] != 0.0) live[n++] = b;
+    if (n == 0) return;
+    const int b = live[std::min(n - 1, static_cast<int>(rng.uniform() * n))];
+    const double e_b = s.e[b] * n;
+    s.e = core::bandFill(0.0);
+    s.e[b] = e_b;
+    s.band = b;
+    const double f = room.bands.lowerHz(b) + rng.uniform() * (room.bands.upperHz(b) - room.bands.lowerHz(b));
+    s.lambda_m = opt.speed_of_sound_m_s / f;
+  }
+
+  // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
+  bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
+    ++acc.occluder_events;
+    double xi[4];
+    for (double& v : xi) v = rng.uniform();
+    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
+    if (!sc.alive) {
+      if (sc.evanescent) ++acc.evanescent;
+      return false;
+    }
+    const room::Occluder& o = opt.occluders->occluder(k);
+    double w = sc.weight;
+    if (o.reflect) w *= 1.0 - room.materials[o.material].absorption[s.band];
+    s.e[s.band] *= w;
+    s.dir = sc.dir;
+    s.pos += (sc.dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;  // off the plane, on the side it leaves to
+    s.specular_chain = false;
+    ++s.order;
+    ++s.diffractions;
+    return true;
+  }
+
+  void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+    Vec3& pos = s.pos;
+    Vec3& dir = s.dir;
+    core::BandArray& e = s.e;
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
       // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
@@ -246,10 +305,10 @@ struct Tracer {
           if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
         }
       }
-      const double remaining = max_path_m - path_m;
+      const double remaining = max_path_m - s.path_m;
       const double t_end = std::min(t_hit, remaining);
-      score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order);
-      if (opt.in_flight) addInFlight(acc, path_m, t_end, e);
+      score(acc, pos, dir, t_end, s.path_m, e, s.specular_chain && s.order <= opt.skip_order);
+      if (opt.in_flight) addInFlight(acc, s.path_m, t_end, e);
       if (!hit.valid()) {
         ++acc.escaped;
         return;
@@ -258,12 +317,20 @@ struct Tracer {
         ++acc.timed_out;
         return;
       }
-      path_m += t_hit;
+      s.path_m += t_hit;
       pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
       if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
+      if (opt.occluders && s.diffractions < opt.max_diffractions) {
+        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
+          if (s.band < 0) chooseBand(rng, s);
+          if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
+          if (!roulette(acc, rng, s)) return;
+          continue;
+        }
+      }
       if (materials.opening[m]) {  // a hole: go on as if nothing were there
         pos -= eps_m * n_in;
         continue;
@@ -271,7 +338,7 @@ struct Tracer {
       // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
       // per-band weights (MaterialTable).
       if (materials.absorbing[m]) return;
-      ++order;
+      ++s.order;
       const double p_reflect = materials.p_reflect[m];
       if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
         const double p_diffuse = materials.p_diffuse[m];
@@ -280,7 +347,7 @@ struct Tracer {
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
-          specular_chain = false;
+          s.specular_chain = false;
         } else {
           const core::BandArray& w = materials.w_specular[m];
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
@@ -290,24 +357,29 @@ struct Tracer {
       } else {
         const core::BandArray& w = materials.w_transmit[m];
         for (int b = 0; b < bands; ++b) e[b] *= w[b];
-        specular_chain = false;
+        s.specular_chain = false;
         pos -= eps_m * n_in;
       }
-      // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
-      // probability). The level leaves air absorption out (it is applied at scoring): an upper bound of the
-      // attenuated level, so rays live a little longer at high frequencies, and no exp per bounce.
-      double level = 0.0;
-      for (int b = 0; b < bands; ++b) level = std::max(level, e[b]);
-      const double threshold = opt.roulette_level * e_start;
-      if (level < threshold) {
-        const double q = level / threshold;
-        if (!(rng.uniform() < q)) {
-          ++acc.roulette_killed;
-          return;
-        }
-        for (int b = 0; b < bands; ++b) e[b] /= q;
-      }
+      if (!roulette(acc, rng, s)) return;
     }
+  }
+
+  // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
+  // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
+  // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
+  // level, so rays live a little longer at high frequencies, and no exp per bounce.
+  bool roulette(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+    double level = 0.0;
+    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(s.e[b]));
+    const double threshold = opt.roulette_level * s.e_start;
+    if (level >= threshold) return true;
+    const double q = level / threshold;
+    if (!(rng.uniform() < q)) {
+      ++acc.roulette_killed;
+      return false;
+    }
+    for (int b = 0; b < bands; ++b) s.e[b] /= q;
+    return true;
   }
 };
 
@@ -347,13 +419,32 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     core::FastRng fast(rng);  // the bounces' uniforms
     for (std::uint64_t i = begin; i < end; ++i) {
       int dim = 0;
-      const double z = 1.0 - 2.0 * sampler.next(i - begin, dim);
-      const double phi = core::kTwoPi * sampler.next(i - begin, dim);
-      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-      const Vec3 dir(r * std::cos(phi), r * std::sin(phi), z);
+      const double xi1 = sampler.next(i - begin, dim), xi2 = sampler.next(i - begin, dim);
+      Vec3 dir;
+      double scale = 1.0;  // 1/(4π·pdf) of the direction, relative to uniform emission
+      if (const EmissionTarget* t = options.aim) {
+        // d: distance from the −x side; uniform, or with probability edge_fraction log-uniform in d + d0.
+        const double width = 2.0 * t->half_x_m, d0 = t->edge_scale_m, f = t->edge_fraction;
+        const double log_span = std::log((width + d0) / d0);
+        double d;
+        if (xi1 < f) d = std::min(width, d0 * std::exp(xi1 / f * log_span) - d0);
+        else d = (xi1 - f) / (1.0 - f) * width;
+        const double pdf_x = (1.0 - f) / width + (f > 0.0 ? f / ((d + d0) * log_span) : 0.0);
+        const Vec3 q = t->origin + (d - t->half_x_m) * t->ex + (2.0 * xi2 - 1.0) * t->half_y_m * t->ey;
+        const Vec3 to = q - src.position_m;
+        const double dist2 = to.squaredNorm();
+        dir = to / std::sqrt(dist2);
+        const double cos_t = std::abs(dir.dot(t->ex.cross(t->ey)));
+        // 1/(4π·pdf per steradian), pdf = pdf_x·pdf_y·r²/cosθ with pdf_y = 1/(2·half_y).
+        scale = cos_t * 2.0 * t->half_y_m / (pdf_x * 4.0 * core::kPi * dist2);
+      } else {
+        const double z = 1.0 - 2.0 * xi1, phi = core::kTwoPi * xi2;
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        dir = Vec3(r * std::cos(phi), r * std::sin(phi), z);
+      }
       const double gain = src.directivity.a == 1.0 ? 1.0 : directivityGain(src.directivity, dir.dot(axis));
       core::BandArray e = core::bandFill(0.0);
-      for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain;
+      for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain * scale;
       tr.tracePath(acc, fast, src.position_m, dir, e);
     }
     acc.rays += end - begin;

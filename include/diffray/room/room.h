@@ -11,6 +11,7 @@
 #include "diffray/core/bands.h"
 #include "diffray/core/math.h"
 #include "diffray/geometry/mesh.h"
+#include "diffray/room/occluder.h"
 
 namespace diffray::room {
 
@@ -77,6 +78,9 @@ struct Room {
   std::vector<std::string> group_of_triangle;
   std::vector<Source> sources;
   std::vector<Listener> listeners;
+  /// WBSDF occluders (doors, slits, edges, gratings): used when diffraction is "wbsdf"; otherwise their
+  /// triangles are plain surfaces (an opening passes rays straight, a grating reflects like its material).
+  std::vector<Occluder> occluders;
   Air air;
   Output output;
 

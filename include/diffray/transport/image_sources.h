@@ -23,6 +23,9 @@ struct ImageSourceOptions {
   core::BandArray air_m_per_m = core::bandFill(0.0);
   /// Refuse (InputError) above this many candidate image sources: planes·(planes − 1)^(order − 1) grows fast.
   double max_candidates = 5e6;
+  /// Per triangle, 1 where a path may not pass even if the material is an opening: the WBSDF occluders when
+  /// diffraction is on (RoomOccluders::triangleMask), whose rays the tracer follows instead. Null: none.
+  const std::vector<char>* blocking_triangles = nullptr;
 };
 
 /// Valid specular paths (order 0 = direct sound) from source `source` to listener `listener`, by delay.

@@ -24,6 +24,10 @@ struct RoomSimulationOptions {
   int ism_order = -2;      ///< −2 = the room file's; −1 = no image sources (rays alone)
   double length_s = 0.0;   ///< 0 = the room file's (or auto)
   bool brute_force = false;  ///< tests only: the brute-force intersector
+  /// "none": occluders are plain surfaces (doorways pass rays straight); "wbsdf": rays diffract at the
+  /// room's occluders (RoomTraceOptions::occluders) and image sources do not pass through them.
+  std::string diffraction = "none";
+  int max_diffractions = 1;  ///< WBSDF scatterings per path (RoomTraceOptions::max_diffractions)
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
   /// Called once every input check has passed, before any tracing (the CLI prints its warnings then, so
   /// that a refused run prints one line only).
@@ -41,6 +45,7 @@ struct RoomSimulation {
   int ism_order = 0;
   std::uint64_t rays = 0, segments = 0, escaped = 0, roulette_killed = 0, timed_out = 0;
   std::size_t image_sources = 0;  ///< valid image-source paths over all pairs
+  std::uint64_t occluder_events = 0, evanescent = 0;  ///< WBSDF scatterings, and the rays they ended
   double trace_seconds = 0.0, ism_seconds = 0.0;
   std::vector<std::string> warnings;
 };

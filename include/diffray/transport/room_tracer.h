@@ -5,7 +5,7 @@
 // the band-mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert (cosine lobe)
 // with the band-mean scattering probability, else specular; the band energies are reweighted by the
 // per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF occluder, next issue,
-// is where bands would part ways). Air absorption e^{−m·d} per band (ISO 9613-1) is applied at scoring,
+// sends each band its own way: RoomTraceOptions::occluders). Air absorption e^{−m·d} per band (ISO 9613-1) is applied at scoring,
 // from the path length d; Russian roulette below `roulette_level` of the emitted energy keeps the
 // estimator unbiased. Listener spheres score the track length inside them (receiver/sphere.h) into band ×
 // time histograms, time = path length / c.
@@ -23,8 +23,21 @@
 #include "diffray/receiver/sphere.h"
 #include "diffray/room/room.h"
 #include "diffray/transport/room_geometry.h"
+#include "diffray/transport/room_occluders.h"
 
 namespace diffray::transport {
+
+/// A rectangle every ray is aimed at (validation scenes: a source far from the edge zone it lights). Rays
+/// leave toward points drawn uniformly on it, weighted by 1/(4π·pdf) (pdf = r²/(A·|cos θ|) per steradian),
+/// so only paths through the rectangle are sampled: exact when nothing else reaches the listeners.
+/// With edge_fraction > 0, that fraction of the points is drawn near the rectangle's −x side (an edge):
+/// the distance d from it log-uniform in d + edge_scale_m, where a diffracting edge sends rays widest.
+struct EmissionTarget {
+  core::Vec3 origin{0, 0, 0}, ex{1, 0, 0}, ey{0, 1, 0};
+  double half_x_m = 1.0, half_y_m = 1.0;
+  double edge_fraction = 0.0;
+  double edge_scale_m = 0.01;
+};
 
 struct RoomTraceOptions {
   std::uint64_t rays = 100000;
@@ -40,6 +53,18 @@ struct RoomTraceOptions {
   /// Also tally the energy in flight (RoomTraceResult::in_flight): what the room as a whole still holds
   /// at each time, per band, integrated over each bin. Smooth with few rays: the pilot's decay estimate.
   bool in_flight = false;
+  /// WBSDF diffraction at the room's occluders (null: occluders are plain surfaces, openings pass rays
+  /// straight). At its first occluder a ray that carries every band goes on in one of them, chosen at
+  /// random (its energy times the band count), at one frequency drawn uniformly inside that band
+  /// (design.md §2), since the WBSDF sends each wavelength its own way; the energies become signed (paper
+  /// section 4).
+  const RoomOccluders* occluders = nullptr;
+  /// WBSDF scatterings per path; later occluders are plain surfaces (openings pass rays straight, with the
+  /// same mean energy, |t|² = 1). Each scattering multiplies the ray by a signed weight of magnitude ~ln of
+  /// the edge kernel's range, so in a reverberant room that crosses a doorway many times the variance grows
+  /// geometrically with this number; the first diffraction carries what a listener hears of the bending.
+  int max_diffractions = 1;
+  const EmissionTarget* aim = nullptr;  ///< null: rays leave uniformly over the sphere
 };
 
 struct RoomTraceResult {
@@ -51,6 +76,8 @@ struct RoomTraceResult {
   std::uint64_t escaped = 0;        ///< rays that left the geometry (a leak or a source outside)
   std::uint64_t roulette_killed = 0;
   std::uint64_t timed_out = 0;      ///< rays still alive at length_s
+  std::uint64_t occluder_events = 0;  ///< WBSDF scatterings at occluders
+  std::uint64_t evanescent = 0;       ///< of those, the rays that ended as evanescent waves
   double seconds = 0.0;
   void merge(const RoomTraceResult& o);
 };

@@ -1,0 +1,47 @@
+#pragma once
+// The WBSDF model's side of a comparison (issue 3/5 diffraction): the level at each listener, per band,
+// relative to the free field of the same source at the same distance, from the room tracer with WBSDF
+// occluders (transport/room_tracer.h, RoomTraceOptions::occluders). Every arrival counts (the steady-state
+// energy), air absorption is left out (it would scale model and reference alike), and each listener's
+// traced fluence is divided by the free-field fluence P·D(θ)/r² of a point source at the listener's centre.
+// Units: dB re free field. Pure function of its arguments; uses every core (core/parallel.h).
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "diffray/room/room.h"
+
+namespace diffray::compare {
+
+struct BandLevel {
+  double ratio = 0.0;            ///< traced fluence / free-field fluence (signed: noise can push it below 0)
+  double ratio_std_error = 0.0;  ///< its standard error from the chunk scatter
+  double level_db = 0.0;         ///< 10·log10(ratio); −inf when ratio ≤ 0
+};
+
+struct WbsdfRunOptions {
+  std::uint64_t rays = 1'000'000;
+  std::uint64_t seed = 1;
+  double length_s = 0.5;  ///< arrivals later than this are left out
+  bool diffraction = true;  ///< false: occluders are plain surfaces (geometric acoustics, "none")
+  std::function<void(std::uint64_t)> on_progress;
+  /// Aim every ray at this rectangle (transport::EmissionTarget); unset: uniform emission.
+  bool aim = false;
+  core::Vec3 aim_origin{0, 0, 0}, aim_ex{1, 0, 0}, aim_ey{0, 1, 0};
+  double aim_half_x_m = 0.0, aim_half_y_m = 0.0;
+  double aim_edge_fraction = 0.0, aim_edge_scale_m = 0.01;
+};
+
+struct WbsdfLevels {
+  std::vector<std::vector<BandLevel>> listeners;  ///< [listener][band]
+  std::uint64_t rays = 0, occluder_events = 0, evanescent = 0, escaped = 0;
+  double seconds = 0.0;
+};
+
+/// Traces source `source` of `room` (with its occluders) and returns the level at every listener per band.
+WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOptions& options);
+
+/// 10·log10(ratio), −inf when ratio ≤ 0.
+double levelDb(double ratio);
+
+}  // namespace diffray::compare

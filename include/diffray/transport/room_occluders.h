@@ -1,0 +1,61 @@
+#pragma once
+// The WBSDF occluders of a room at run time (room/occluder.h): which triangle belongs to which occluder,
+// and the scattering of a single-wavelength ray that meets one (paper eq. 8–10, design.md §1). A hit at
+// local (x, y) with incident direction cosines (α, β, γ) draws shifts (u', v') from W_x(x,·) and W_y(y,·):
+// openings and edges by the analytic edge kernel (wbsdf/edge_kernel.h, exact for any wavelength), slit
+// arrays and gratings from a WbsdfTable built once for the shortest wavelength of the bands (W in u does not
+// depend on λ; only the table's range does). The outgoing direction is (α + λu', β + λv', ±√(1 − …));
+// an imaginary root is an evanescent wave and the ray ends. The signed weight W/p multiplies the ray's
+// energy. Immutable once built; thread-safe.
+#include <memory>
+#include <vector>
+
+#include "diffray/core/math.h"
+#include "diffray/room/room.h"
+#include "diffray/wbsdf/table.h"
+
+namespace diffray::transport {
+
+class RoomOccluders {
+ public:
+  /// `shortest_wavelength_m` sets the range of the tables (slit arrays, gratings).
+  RoomOccluders(const room::Room& room, double shortest_wavelength_m);
+
+  bool empty() const { return occluders_.empty(); }
+  /// The occluder whose opening or panel triangle `tri` is, or −1.
+  int occluderOf(int tri) const { return tri < static_cast<int>(of_triangle_.size()) ? of_triangle_[tri] : -1; }
+  /// Per triangle: 1 where an occluder sits (image sources must not pass there when diffraction is on).
+  const std::vector<char>& triangleMask() const { return mask_; }
+
+  struct Scatter {
+    bool alive = false;      ///< false: evanescent, or t = 0 where the ray met the occluder
+    bool evanescent = false;
+    double weight = 0.0;     ///< signed factor on the ray's energy (reflectance of gratings not included)
+    core::Vec3 dir{0, 0, 1};
+  };
+  /// Scatters a ray of wavelength `lambda_m` meeting occluder `k` at `p` with unit direction `dir`, from
+  /// four uniforms in [0, 1).
+  Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4]) const;
+
+  const room::Occluder& occluder(int k) const { return occluders_[k].spec; }
+  int size() const { return static_cast<int>(occluders_.size()); }
+
+ private:
+  struct Axis {
+    room::OccluderAxis spec;
+    std::shared_ptr<const wbsdf::WbsdfTable> table;  ///< Slits, Grating
+  };
+  struct Entry {
+    room::Occluder spec;
+    Axis x, y;
+  };
+  /// Shift u' (cycles per metre) and its weight along one axis at local coordinate c, for incident direction
+  /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max.
+  static void sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
+                         const double* xi, double& u, double& w);
+  std::vector<Entry> occluders_;
+  std::vector<int> of_triangle_;
+  std::vector<char> mask_;
+};
+
+}  // namespace diffray::transport

@@ -1,0 +1,62 @@
+#include "diffray/compare/wbsdf_levels.h"
+
+#include <cmath>
+#include <limits>
+
+#include "diffray/core/error.h"
+#include "diffray/room/air.h"
+#include "diffray/transport/room_geometry.h"
+#include "diffray/transport/room_occluders.h"
+#include "diffray/transport/room_tracer.h"
+
+namespace diffray::compare {
+
+double levelDb(double ratio) {
+  return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity();
+}
+
+WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOptions& options) {
+  if (source < 0 || source >= static_cast<int>(room.sources.size())) throw core::InternalError("wbsdfLevels: no such source");
+  const transport::RoomGeometry geometry(room);
+  const double c = room::speedOfSound(room.air);
+  const transport::RoomOccluders occluders(room, c / room.bands.upperHz(room.bands.size() - 1));
+  transport::RoomTraceOptions opt;
+  opt.rays = options.rays;
+  opt.seed = options.seed;
+  opt.length_s = options.length_s;
+  opt.bin_s = options.length_s;  // one bin: the whole arrival's energy, with its standard error
+  opt.skip_order = -1;           // no image sources here: the rays carry every path
+  opt.speed_of_sound_m_s = c;
+  opt.on_progress = options.on_progress;
+  if (options.diffraction && !occluders.empty()) opt.occluders = &occluders;
+  transport::EmissionTarget aim{options.aim_origin, options.aim_ex, options.aim_ey, options.aim_half_x_m,
+                                options.aim_half_y_m, options.aim_edge_fraction, options.aim_edge_scale_m};
+  if (options.aim) opt.aim = &aim;
+  const transport::RoomTraceResult r = transport::traceRoom(room, geometry, source, opt);
+
+  WbsdfLevels out;
+  out.rays = r.rays;
+  out.occluder_events = r.occluder_events;
+  out.evanescent = r.evanescent;
+  out.escaped = r.escaped;
+  out.seconds = r.seconds;
+  const room::Source& src = room.sources[source];
+  for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+    const core::Vec3 to = room.listeners[l].position_m - src.position_m;
+    const double r2 = to.squaredNorm();
+    const double gain = transport::directivityGain(src.directivity, to.normalized().dot(src.directivity.axis.normalized()));
+    const double free = src.power_w * gain / r2;
+    std::vector<BandLevel> bands;
+    for (int b = 0; b < room.bands.size(); ++b) {
+      BandLevel bl;
+      bl.ratio = r.listeners[l].value(b, 0) / free;
+      bl.ratio_std_error = r.listeners[l].standardError(b, 0) / free;
+      bl.level_db = levelDb(bl.ratio);
+      bands.push_back(bl);
+    }
+    out.listeners.push_back(bands);
+  }
+  return out;
+}
+
+}  // namespace diffray::compare

@@ -1,0 +1,216 @@
+#include "diffray/room/occluder_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "diffray/core/error.h"
+
+namespace diffray::room {
+namespace {
+
+std::string inQuotes(const std::string& s) { return "\"" + s + "\""; }
+
+int openingMaterial(Room& room) {
+  for (int m = 0; m < static_cast<int>(room.materials.size()); ++m)
+    if (room.materials[m].name == "occluder-opening") return m;
+  Material open;
+  open.name = "occluder-opening";
+  open.absorption = core::bandFill(1.0);
+  open.transmission = core::bandFill(1.0);
+  open.reference = "an open occluder: transmits everything";
+  return room.addMaterial(open);
+}
+
+// Vertices of the occluder's rectangle, in order.
+std::vector<Vec3> rectCorners(const Occluder& o) {
+  const Vec3 hx = o.half_x_m * o.ex, hy = o.half_y_m * o.ey;
+  return {o.origin_m - hx - hy, o.origin_m + hx - hy, o.origin_m + hx + hy, o.origin_m - hx + hy};
+}
+
+Vec3 unitVector(const JsonField& f) {
+  const Vec3 v = f.vec3();
+  if (!(v.norm() > 0.0)) f.fail("must not be the zero vector");
+  return v.normalized();
+}
+
+double edgeZone(const JsonField& o) { return o.has("extent_m") ? o["extent_m"].positive() : kDefaultEdgeZoneM; }
+
+// A door or slit given by an existing opening group of the mesh: its frame and rectangle from the group's
+// triangles, which must be coplanar.
+void fromGroup(const JsonField& g, Room& room, Occluder& occ, const Vec3& up) {
+  occ.group = g.string();
+  std::vector<int> tris;
+  for (std::size_t t = 0; t < room.group_of_triangle.size(); ++t)
+    if (room.group_of_triangle[t] == occ.group) tris.push_back(static_cast<int>(t));
+  if (tris.empty()) g.fail("no face group " + inQuotes(occ.group) + " in the geometry");
+  const auto& tri = room.mesh.triangles[tris[0]];
+  const Vec3& a = room.mesh.vertices[tri[0]];
+  const Vec3 n = (room.mesh.vertices[tri[1]] - a).cross(room.mesh.vertices[tri[2]] - a).normalized();
+  setOccluderFrame(occ, n, up, g.where());
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300}, area = 0.0, scale = 0.0;
+  for (int t : tris) {
+    const auto& v = room.mesh.triangles[t];
+    const Vec3 &p0 = room.mesh.vertices[v[0]], &p1 = room.mesh.vertices[v[1]], &p2 = room.mesh.vertices[v[2]];
+    area += 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    for (const Vec3* p : {&p0, &p1, &p2}) {
+      scale = std::max(scale, p->cwiseAbs().maxCoeff());
+      if (std::abs((*p - a).dot(n)) > 1e-6 * std::max(1.0, scale))
+        g.fail("face group " + inQuotes(occ.group) + " is not planar: an occluder's opening must be flat");
+      const double c[2] = {p->dot(occ.ex), p->dot(occ.ey)};
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+    }
+  }
+  occ.half_x_m = 0.5 * (hi[0] - lo[0]);
+  occ.half_y_m = 0.5 * (hi[1] - lo[1]);
+  occ.origin_m = a + (0.5 * (lo[0] + hi[0]) - a.dot(occ.ex)) * occ.ex + (0.5 * (lo[1] + hi[1]) - a.dot(occ.ey)) * occ.ey;
+  const double rect = 4.0 * occ.half_x_m * occ.half_y_m;
+  if (!(rect > 0.0) || std::abs(area - rect) > 1e-3 * rect)
+    g.fail("face group " + inQuotes(occ.group) + " is not a rectangle aligned with \"up\" (area " +
+           formatNumber(area) + " m² against its bounding rectangle's " + formatNumber(rect) + " m²)");
+}
+
+// An opening occluder (door or slit): from a group, or an explicit rectangle added to the mesh.
+Occluder opening(const JsonField& o, Room& room, const std::string& type) {
+  Occluder occ;
+  occ.type = type;
+  const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
+  const bool explicit_rect = !o.has("group");
+  if (explicit_rect) {
+    occ.origin_m = o["centre"].vec3();
+    setOccluderFrame(occ, unitVector(o["normal"]), up, o["up"].where());
+    occ.half_x_m = 0.5 * o["width_m"].positive();
+    occ.half_y_m = 0.5 * o["height_m"].positive();
+  } else {
+    for (const char* k : {"centre", "normal", "width_m", "height_m"})
+      if (o.has(k)) o[k].fail("give either \"group\" or an explicit rectangle (centre, normal, width_m, height_m)");
+    fromGroup(o["group"], room, occ, up);
+  }
+  const std::string sill = o.has("sill") ? o["sill"].string() : (type == "door" ? "floor" : "none");
+  if (sill != "floor" && sill != "none") o["sill"].fail("must be \"floor\" or \"none\", got " + inQuotes(sill));
+  if (o.has("slits")) {
+    occ.x.kind = OccluderAxis::Kind::Slits;
+    occ.x.count = static_cast<int>(o["slits"].integerIn(1, 64));
+    const double w = o["slit_width_m"].positive();
+    occ.x.lo_m = -0.5 * w, occ.x.hi_m = 0.5 * w;
+    occ.x.spacing_m = occ.x.count > 1 ? o["spacing_m"].positive() : 0.0;
+    if (occ.x.count > 1 && occ.x.spacing_m <= w) o["spacing_m"].fail("must exceed slit_width_m");
+    if ((occ.x.count - 1) * occ.x.spacing_m + w > 2.0 * occ.half_x_m * (1 + 1e-9))
+      o["slits"].fail("the slits do not fit in the occluder's width");
+  } else {
+    occ.x.kind = OccluderAxis::Kind::Opening;
+    occ.x.lo_m = -occ.half_x_m, occ.x.hi_m = occ.half_x_m;
+  }
+  occ.y.kind = OccluderAxis::Kind::Opening;
+  occ.y.lo_m = -occ.half_y_m, occ.y.hi_m = occ.half_y_m;
+  occ.y.mirror_lo = sill == "floor";
+  if (o.has("name")) occ.name = o["name"].string();
+  if (explicit_rect) occ.group.clear();
+  return occ;
+}
+
+Occluder edgeZoneOccluder(const Vec3& start, const Vec3& end, const Vec3& open_toward, double extent_m,
+                          const std::string& field) {
+  Occluder occ;
+  occ.type = "edge";
+  const Vec3 along = end - start;
+  if (!(along.norm() > 0.0)) throw core::InputError(field, "the edge has zero length");
+  occ.ey = along.normalized();
+  occ.ex = open_toward - open_toward.dot(occ.ey) * occ.ey;
+  if (!(occ.ex.norm() > 1e-6 * open_toward.norm())) throw core::InputError(field, "open_toward is parallel to the edge");
+  occ.ex.normalize();
+  occ.normal = occ.ex.cross(occ.ey);
+  occ.half_x_m = 0.5 * extent_m;
+  occ.half_y_m = 0.5 * along.norm();
+  occ.origin_m = 0.5 * (start + end) + occ.half_x_m * occ.ex;
+  occ.x.kind = OccluderAxis::Kind::Edge;
+  occ.x.lo_m = -occ.half_x_m, occ.x.hi_m = occ.half_x_m;
+  return occ;
+}
+
+}  // namespace
+
+void setOccluderFrame(Occluder& occ, const Vec3& normal, const Vec3& up, const std::string& field) {
+  if (!(normal.norm() > 0.0) || !(up.norm() > 0.0)) throw core::InputError(field, "normal and up must not be zero");
+  occ.normal = normal.normalized();
+  Vec3 ey = up.normalized() - up.normalized().dot(occ.normal) * occ.normal;
+  if (!(ey.norm() > 1e-6)) throw core::InputError(field, "\"up\" must not be parallel to the occluder's normal");
+  occ.ey = ey.normalized();
+  occ.ex = occ.ey.cross(occ.normal);
+}
+
+void addOccluderRect(Room& room, Occluder occ, int material) {
+  occ.group = "occluder:" + occ.name;
+  room.addPolygon(rectCorners(occ), material >= 0 ? material : openingMaterial(room), occ.group);
+  room.occluders.push_back(std::move(occ));
+}
+
+void parseOccluders(const JsonField& list, Room& room, const std::function<int(const JsonField&)>& resolve,
+                    std::vector<std::string>& warnings) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list.arraySize(); ++i) {
+    const JsonField o = list.at(i);
+    const std::string type = o["type"].string();
+    const std::string fallback = type + std::to_string(i + 1);
+    if (type == "door" || type == "slit") {
+      o.allowKeys({"type", "name", "group", "centre", "normal", "up", "width_m", "height_m", "sill", "slits",
+                   "slit_width_m", "spacing_m"});
+      Occluder occ = opening(o, room, type);
+      if (occ.name.empty()) occ.name = fallback;
+      if (!names.insert(occ.name).second) o["name"].fail("duplicate occluder name " + inQuotes(occ.name));
+      if (occ.group.empty()) {
+        addOccluderRect(room, occ);
+      } else {
+        for (std::size_t t = 0; t < room.group_of_triangle.size(); ++t)
+          if (room.group_of_triangle[t] == occ.group && !room.isOpening(room.mesh.object_of_triangle[t]))
+            o["group"].fail("face group " + inQuotes(occ.group) + " must have a fully transmitting material (an "
+                            "opening, absorption = transmission = 1), the door's hole");
+        room.occluders.push_back(occ);
+      }
+    } else if (type == "edge" || type == "barrier") {
+      Occluder zone;
+      std::string name = o.has("name") ? o["name"].string() : fallback;
+      if (!names.insert(name).second) o["name"].fail("duplicate occluder name " + inQuotes(name));
+      if (type == "edge") {
+        o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m"});
+        zone = edgeZoneOccluder(o["start"].vec3(), o["end"].vec3(), o["open_toward"].vec3(), edgeZone(o), o.where());
+      } else {
+        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m"});
+        const JsonField base = o["base"];
+        base.arraySize(2);
+        const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
+        const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
+        const double h = o["height_m"].positive();
+        const int material = resolve(o["material"]);
+        room.addPolygon({p0, p1, p1 + h * up, p0 + h * up}, material, "barrier:" + name);
+        zone = edgeZoneOccluder(p0 + h * up, p1 + h * up, up, edgeZone(o), o.where());
+        zone.type = "barrier";
+      }
+      zone.name = name;
+      addOccluderRect(room, zone);
+    } else if (type == "grating") {
+      o.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation_m",
+                   "material"});
+      Occluder occ;
+      occ.type = type;
+      occ.name = o.has("name") ? o["name"].string() : fallback;
+      if (!names.insert(occ.name).second) o["name"].fail("duplicate occluder name " + inQuotes(occ.name));
+      occ.origin_m = o["centre"].vec3();
+      setOccluderFrame(occ, unitVector(o["normal"]), o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1), o.where());
+      occ.half_x_m = 0.5 * o["width_m"].positive();
+      occ.half_y_m = 0.5 * o["height_m"].positive();
+      occ.x.kind = OccluderAxis::Kind::Grating;
+      occ.x.period_m = o["period_m"].positive();
+      occ.x.modulation_m = o["modulation_m"].positive();
+      occ.reflect = true;
+      occ.material = resolve(o["material"]);
+      addOccluderRect(room, occ, occ.material);
+    } else {
+      o["type"].fail("unknown occluder type " + inQuotes(type) + " (one of door, slit, edge, barrier, grating)");
+    }
+  }
+  if (!room.occluders.empty() && room.listeners.empty())
+    warnings.push_back(list.where() + ": occluders but no listener");
+}
+
+}  // namespace diffray::room

@@ -1,0 +1,113 @@
+#include "diffray/transport/room_occluders.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "diffray/core/error.h"
+#include "diffray/wbsdf/edge_kernel.h"
+#include "diffray/wbsdf/microstructure.h"
+
+namespace diffray::transport {
+
+using core::Vec3;
+using Kind = room::OccluderAxis::Kind;
+
+namespace {
+
+// Smallest edge distance used for the kernel (m): a hit within float rounding of an edge.
+constexpr double kMinEdgeDistanceM = 1e-9;
+
+std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const room::OccluderAxis& a, double lambda_m) {
+  wbsdf::TableOptions opt;
+  opt.wavelength_m = lambda_m;
+  opt.coarsen_to_fit = true;
+  if (a.kind == Kind::Slits)
+    return wbsdf::WbsdfTable::build(*wbsdf::Openings::slits(a.count, a.hi_m - a.lo_m, a.spacing_m), opt);
+  if (a.kind == Kind::Grating) return wbsdf::WbsdfTable::build(wbsdf::PhaseGrating(a.period_m, a.modulation_m), opt);
+  return nullptr;
+}
+
+}  // namespace
+
+RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_m) {
+  core::requirePositive("shortest wavelength", shortest_wavelength_m);
+  of_triangle_.assign(room.mesh.triangleCount(), -1);
+  mask_.assign(room.mesh.triangleCount(), 0);
+  for (const room::Occluder& o : room.occluders) {
+    const int k = static_cast<int>(occluders_.size());
+    Entry e{o, {o.x, tableFor(o.x, shortest_wavelength_m)}, {o.y, tableFor(o.y, shortest_wavelength_m)}};
+    occluders_.push_back(std::move(e));
+    int found = 0;
+    for (std::size_t t = 0; t < room.group_of_triangle.size(); ++t)
+      if (room.group_of_triangle[t] == o.group) {
+        of_triangle_[t] = k;
+        mask_[t] = 1;
+        ++found;
+      }
+    if (found == 0) throw core::InternalError("occluder " + o.name + " has no triangles (group " + o.group + ")");
+  }
+}
+
+void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
+                               const double* xi, double& u, double& w) {
+  switch (a.spec.kind) {
+    case Kind::Uniform:
+      u = 0.0, w = 1.0;
+      return;
+    case Kind::Opening:
+    case Kind::Edge: {
+      // W = 4d·sinc(4du), d the distance to the nearer diffracting edge (wbsdf/edge_kernel.h); u' = w/(4d),
+      // drawn only where the outgoing cosine α + λu' stays within ±alpha_max (the rest is evanescent).
+      double d = a.spec.hi_m - c;
+      if (a.spec.kind == Kind::Edge) d = c - a.spec.lo_m;
+      else if (!a.spec.mirror_lo) d = std::min(d, c - a.spec.lo_m);
+      d = std::max(d, kMinEdgeDistanceM);
+      const double scale = 4.0 * d / lambda_m;  // w per unit of direction cosine
+      const wbsdf::EdgeKernelSample s =
+          wbsdf::edgeKernelSample(std::min(0.0, (-alpha_max - alpha) * scale), std::max(0.0, (alpha_max - alpha) * scale),
+                                  xi[0], xi[1]);
+      u = s.w / (4.0 * d), w = s.weight;
+      return;
+    }
+    case Kind::Slits:
+    case Kind::Grating: {
+      const wbsdf::WbsdfTable::Sample s = a.table->sample(c, xi[0]);
+      u = s.u_shift, w = s.weight;
+      return;
+    }
+  }
+  u = 0.0, w = 0.0;
+}
+
+RoomOccluders::Scatter RoomOccluders::scatter(int k, const Vec3& p, const Vec3& dir, double lambda_m,
+                                              const double xi[4]) const {
+  const Entry& e = occluders_[k];
+  const room::Occluder& o = e.spec;
+  const Vec3 local = p - o.origin_m;
+  const double x = local.dot(o.ex), y = local.dot(o.ey);
+  Scatter s;
+  // Paper eq. 8 (angle-shift invariance): direction cosines along ex, ey shift by λu', λv'. Only propagating
+  // outcomes α'² + β'² < 1 are drawn: the x shift first, within |α'| < √(1 − β²) when nothing diffracts
+  // along y (β' = β) and |α'| < 1 otherwise, then the y shift within |β'| < √(1 − α'²).
+  const double alpha_i = dir.dot(o.ex), beta_i = dir.dot(o.ey);
+  const double alpha_max = e.y.spec.kind == Kind::Uniform ? std::sqrt(std::max(0.0, 1.0 - beta_i * beta_i)) : 1.0;
+  double u, wx, v, wy;
+  sampleAxis(e.x, x, lambda_m, alpha_i, alpha_max, xi, u, wx);
+  const double alpha = alpha_i + lambda_m * u;
+  sampleAxis(e.y, y, lambda_m, beta_i, std::sqrt(std::max(0.0, 1.0 - alpha * alpha)), xi + 2, v, wy);
+  s.weight = wx * wy;
+  if (s.weight == 0.0) return s;
+  const double beta = beta_i + lambda_m * v;
+  const double gamma_sq = 1.0 - alpha * alpha - beta * beta;
+  if (gamma_sq <= 0.0) {
+    s.evanescent = true;
+    return s;
+  }
+  double gamma = std::copysign(std::sqrt(gamma_sq), dir.dot(o.normal));
+  if (o.reflect) gamma = -gamma;  // paper eq. 9: the mirrored outgoing wave
+  s.dir = alpha * o.ex + beta * o.ey + gamma * o.normal;
+  s.alive = true;
+  return s;
+}
+
+}  // namespace diffray::transport
