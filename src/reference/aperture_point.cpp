@@ -123,12 +123,13 @@ bool overlap(const ApertureRect& a, const ApertureRect& b) {
 
 // Validates everything and returns the quadrature nodes for wavenumbers up to k_max.
 std::vector<Node> buildNodes(const std::string& where, const ApertureScreen& screen,
-                             const CartesianPoint& source, const CartesianPoint& receiver, double k_max_per_m) {
+                             const CartesianPoint& source, const CartesianPoint& receiver,
+                             double k_max_per_m) {
   requirePoint(where + ": source", source);
   requirePoint(where + ": receiver", receiver);
   if (!(source.z_m < 0.0))
-    throw core::InputError(where + ": source.z_m",
-                           "the source must lie in front of the screen (z < 0), got " + std::to_string(source.z_m));
+    throw core::InputError(where + ": source.z_m", "the source must lie in front of the screen (z < 0), got " +
+                                                       std::to_string(source.z_m));
   if (!(receiver.z_m > 0.0))
     throw core::InputError(where + ": receiver.z_m", "the receiver must lie behind the screen (z > 0), got " +
                                                          std::to_string(receiver.z_m));

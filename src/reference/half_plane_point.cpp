@@ -106,8 +106,8 @@ Complex halfPlanePointSource(double wavelength_m, const CylindricalPoint& source
 
 namespace {
 // |u·R|²: the energy re the free field at the same distance.
-double energyReFreeField(double wavelength_m, const CylindricalPoint& source, const CylindricalPoint& receiver,
-                         bool rigid) {
+double energyReFreeField(double wavelength_m, const CylindricalPoint& source,
+                         const CylindricalPoint& receiver, bool rigid) {
   const Complex u = halfPlanePointSource(wavelength_m, source, receiver, rigid);
   const double r_m = distance(receiver.rho_m, source.rho_m, receiver.phi_rad - source.phi_rad,
                               receiver.z_m - source.z_m);

@@ -21,8 +21,8 @@
 // the Helmholtz equation by O(1/(kR)): percent level at kR ~ 10); both tend to Sommerfeld's plane-wave
 // solution times e^{−ikρ0}/ρ0 as ρ0 → ∞. Level re free field: 20·log10(|u|·R).
 //
-// Contract: an ORACLE, sharing no code with the ray tracer or the UTD model (it uses only
-// the module's own Gauss–Legendre rule). Units: metres, radians, hertz, m/s. Invalid input (non-finite values,
+// Contract: an ORACLE, sharing no code with the ray tracer or the UTD model (it uses only the module's
+// own Gauss–Legendre rule). Units: metres, radians, hertz, m/s. Invalid input (non-finite values,
 // wavelength or frequencies <= 0, ρ < 0, φ outside [0, 2π], source and receiver at the same point) throws
 // core::InputError. Thread-safety: pure functions; safe to call concurrently.
 #include <complex>
