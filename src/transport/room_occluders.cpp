@@ -27,6 +27,27 @@ std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const room::OccluderAxis& a, d
   return nullptr;
 }
 
+// The energy factor |1 ± c1/c2|² of OccluderAxis::Faces for a ray arriving along d_in and leaving along
+// d_out across an edge whose open side lies along `open` (unit, in the occluder's plane, perpendicular to the
+// edge) with occluder normal `n`. Angles in the plane across the edge, from the screen face (direction
+// −open) toward the side the ray comes from: φ0 of the direction back to the source, φ of the outgoing
+// direction, in [0, 2π). Capped at 4, the grazing limit (incident and reflected waves coincide).
+double facesFactor(room::OccluderAxis::Faces faces, const Vec3& open, const Vec3& n, const Vec3& d_in,
+                   const Vec3& d_out) {
+  if (faces == room::OccluderAxis::Faces::Kirchhoff) return 1.0;
+  const double side = -d_in.dot(n) >= 0.0 ? 1.0 : -1.0;  // the source's side of the plane is +Y
+  const double x0 = -(-d_in).dot(open), y0 = side * (-d_in).dot(n);
+  const double x1 = -d_out.dot(open), y1 = side * d_out.dot(n);
+  if (x0 * x0 + y0 * y0 < 1e-24 || x1 * x1 + y1 * y1 < 1e-24) return 1.0;  // along the edge: no plane
+  const double phi0 = std::atan2(y0, x0);
+  double phi = std::atan2(y1, x1);
+  if (phi < 0.0) phi += core::kTwoPi;
+  const double c1 = std::cos(0.5 * (phi - phi0)), c2 = std::cos(0.5 * (phi + phi0));
+  if (std::abs(c2) < 1e-12) return 4.0;
+  const double a = faces == room::OccluderAxis::Faces::Rigid ? 1.0 + c1 / c2 : 1.0 - c1 / c2;
+  return std::min(4.0, a * a);
+}
+
 }  // namespace
 
 RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_m) {
@@ -49,7 +70,8 @@ RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_
 }
 
 void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
-                               const double* xi, double& u, double& w) {
+                               const double* xi, double& u, double& w, double& open_sign) {
+  open_sign = 0.0;
   switch (a.spec.kind) {
     case Kind::Uniform:
       u = 0.0, w = 1.0;
@@ -59,8 +81,11 @@ void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double 
       // W = 4d·sinc(4du), d the distance to the nearer diffracting edge (wbsdf/edge_kernel.h); u' = w/(4d),
       // drawn only where the outgoing cosine α + λu' stays within ±alpha_max (the rest is evanescent).
       double d = a.spec.hi_m - c;
-      if (a.spec.kind == Kind::Edge) d = c - a.spec.lo_m;
-      else if (!a.spec.mirror_lo) d = std::min(d, c - a.spec.lo_m);
+      open_sign = -1.0;  // the hi edge: its open side lies toward −axis
+      if (a.spec.kind == Kind::Edge || (!a.spec.mirror_lo && c - a.spec.lo_m < d)) {
+        d = c - a.spec.lo_m;
+        open_sign = 1.0;
+      }
       d = std::max(d, kMinEdgeDistanceM);
       const double scale = 4.0 * d / lambda_m;  // w per unit of direction cosine
       const wbsdf::EdgeKernelSample s =
@@ -91,10 +116,10 @@ RoomOccluders::Scatter RoomOccluders::scatter(int k, const Vec3& p, const Vec3& 
   // along y (β' = β) and |α'| < 1 otherwise, then the y shift within |β'| < √(1 − α'²).
   const double alpha_i = dir.dot(o.ex), beta_i = dir.dot(o.ey);
   const double alpha_max = e.y.spec.kind == Kind::Uniform ? std::sqrt(std::max(0.0, 1.0 - beta_i * beta_i)) : 1.0;
-  double u, wx, v, wy;
-  sampleAxis(e.x, x, lambda_m, alpha_i, alpha_max, xi, u, wx);
+  double u, wx, v, wy, open_x, open_y;
+  sampleAxis(e.x, x, lambda_m, alpha_i, alpha_max, xi, u, wx, open_x);
   const double alpha = alpha_i + lambda_m * u;
-  sampleAxis(e.y, y, lambda_m, beta_i, std::sqrt(std::max(0.0, 1.0 - alpha * alpha)), xi + 2, v, wy);
+  sampleAxis(e.y, y, lambda_m, beta_i, std::sqrt(std::max(0.0, 1.0 - alpha * alpha)), xi + 2, v, wy, open_y);
   s.weight = wx * wy;
   if (s.weight == 0.0) return s;
   const double beta = beta_i + lambda_m * v;
@@ -106,6 +131,8 @@ RoomOccluders::Scatter RoomOccluders::scatter(int k, const Vec3& p, const Vec3& 
   double gamma = std::copysign(std::sqrt(gamma_sq), dir.dot(o.normal));
   if (o.reflect) gamma = -gamma;  // paper eq. 9: the mirrored outgoing wave
   s.dir = alpha * o.ex + beta * o.ey + gamma * o.normal;
+  if (open_x != 0.0) s.weight *= facesFactor(e.x.spec.faces, open_x * o.ex, o.normal, dir, s.dir);
+  if (open_y != 0.0) s.weight *= facesFactor(e.y.spec.faces, open_y * o.ey, o.normal, dir, s.dir);
   s.alive = true;
   return s;
 }

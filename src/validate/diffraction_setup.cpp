@@ -30,6 +30,7 @@ room::Room makeHalfPlaneScene(const HalfPlaneSpec& spec) {
   zone.origin_m = zone.half_x_m * zone.ex;
   zone.x.kind = room::OccluderAxis::Kind::Edge;
   zone.x.lo_m = -zone.half_x_m, zone.x.hi_m = zone.half_x_m;
+  zone.x.faces = spec.faces;
   room::addOccluderRect(room, zone);
   room::Source s;
   s.name = "S";

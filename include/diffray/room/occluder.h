@@ -29,6 +29,13 @@ struct OccluderAxis {
   /// Opening only: the lo side stands on a rigid floor perpendicular to the occluder (a door's sill); by the
   /// image principle the opening is [2·lo − hi, hi] mirrored, so only the hi edge diffracts.
   bool mirror_lo = false;
+  /// Opening and Edge: the faces next to each diffracting edge. Kirchhoff: the plain WBSDF (it lands between
+  /// the soft and rigid exact solutions, design.md §4); Rigid / Soft: each ray's energy is also weighted by
+  /// |1 ± cos((φ − φ0)/2)/cos((φ + φ0)/2)|², the ratio of the rigid (soft) half-plane's diffraction coefficient
+  /// to the Kirchhoff one (Sommerfeld's two terms, design.md §3), with φ0, φ the incident and outgoing
+  /// directions in the plane across the nearer edge, measured from its screen face.
+  enum class Faces { Kirchhoff, Rigid, Soft };
+  Faces faces = Faces::Kirchhoff;
   int count = 1;
   double spacing_m = 0.0;
   double period_m = 0.0, modulation_m = 0.0;

@@ -50,9 +50,10 @@ class RoomOccluders {
     Axis x, y;
   };
   /// Shift u' (cycles per metre) and its weight along one axis at local coordinate c, for incident direction
-  /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max.
+  /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max. `open_sign`: ±1
+  /// the direction along the axis from the nearer diffracting edge into the opening, 0 if none.
   static void sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
-                         const double* xi, double& u, double& w);
+                         const double* xi, double& u, double& w, double& open_sign);
   std::vector<Entry> occluders_;
   std::vector<int> of_triangle_;
   std::vector<char> mask_;

@@ -20,6 +20,7 @@ struct HalfPlaneSpec {
   double panel_m = 60.0;
   double zone_m = 10.0;
   double absorption = 0.0;  ///< of the screen's faces
+  room::OccluderAxis::Faces faces = room::OccluderAxis::Faces::Rigid;
 };
 
 room::Room makeHalfPlaneScene(const HalfPlaneSpec& spec);
