@@ -34,9 +34,22 @@ UtdModel::UtdModel(const room::Room& room, const transport::RoomGeometry& geomet
   edges_ = extractEdges(room, geometry, options_.edges);
   for (int m = 0; m < static_cast<int>(room.materials.size()); ++m) opening_.push_back(room.isOpening(m) ? 1 : 0);
   offset_m_ = 1e-4 * geometry.extent();
+  if (!room.mesh.vertices.empty()) {
+    Vec3 lo = room.mesh.vertices[0], hi = lo;
+    for (const Vec3& v : room.mesh.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    centre_ = 0.5 * (lo + hi);
+  }
 }
 
-bool UtdModel::visible(const Vec3& from, const Vec3& to) const {
+bool UtdModel::visible(const Vec3& a, const Vec3& b) const {
+  // Embree works in float: trace from the end nearer the geometry, so that a far source's rounding
+  // (1e-7 of its distance) does not move the ray near the edges and faces it must pass.
+  const bool swap = (a - centre_).squaredNorm() > (b - centre_).squaredNorm();
+  const Vec3& from = swap ? b : a;
+  const Vec3& to = swap ? a : b;
   const Vec3 d = to - from;
   const double len = d.norm();
   if (!(len > 0.0)) return true;

@@ -109,6 +109,7 @@ class UtdModel {
   std::vector<Edge> edges_;
   std::vector<char> opening_;  ///< per material
   double offset_m_ = 1e-4;
+  core::Vec3 centre_{0, 0, 0};  ///< of the mesh's bounding box
 };
 
 }  // namespace diffray::utd
