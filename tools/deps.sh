@@ -3,7 +3,7 @@
 # Sourced by tools/quickstart and tools/check. As root it runs apt-get; otherwise it prints the exact
 # command to run and stops.
 DIFFRAY_PACKAGES=(build-essential cmake pkg-config libembree-dev libtbb-dev libfftw3-dev libeigen3-dev
-  libsndfile1-dev portaudio19-dev nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox)
+  libsndfile1-dev portaudio19-dev libcerf-dev nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox)
 
 diffray_install_deps() {
   local missing=()
