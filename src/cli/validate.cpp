@@ -40,11 +40,18 @@ nlohmann::json toJson(const validate::CaseResult& r) {
   j["case"] = r.name;
   j["rays"] = r.rays;
   j["seconds"] = r.seconds;
-  j["max_abs_error_rel_peak"] = r.max_abs_error_rel_peak;
-  j["rms_error_rel_peak"] = r.rms_error_rel_peak;
-  j["max_std_error_rel_peak"] = r.max_std_error_rel_peak;
+  if (r.errors_in_db) {  // level differences: the "rel_peak" figures do not apply
+    j["max_abs_error_db"] = r.max_abs_error_rel_peak;
+    j["rms_error_db"] = r.rms_error_rel_peak;
+    j["max_std_error_db"] = r.max_std_error_rel_peak;
+    j["target_db"] = r.target_rel_peak;
+  } else {
+    j["max_abs_error_rel_peak"] = r.max_abs_error_rel_peak;
+    j["rms_error_rel_peak"] = r.rms_error_rel_peak;
+    j["max_std_error_rel_peak"] = r.max_std_error_rel_peak;
+  }
   j["negative_energy_fraction"] = r.negative_energy_fraction;
-  j["target_rel_peak"] = r.target_rel_peak;
+  if (!r.errors_in_db) j["target_rel_peak"] = r.target_rel_peak;
   j["passed"] = r.passed;
   if (!r.detail.empty()) j["detail"] = r.detail;
   for (const auto& [k, v] : r.extra) j["extra"][k] = v;
@@ -62,13 +69,17 @@ void writeCsv(const std::string& path, const std::vector<validate::CaseResult>& 
 }
 
 void printTable(const std::vector<validate::CaseResult>& results, bool verbose) {
-  std::printf("%-16s %10s %8s %12s %12s %12s %10s  %s\n", "case", "rays", "seconds", "max err %",
-              "rms err %", "noise %", "neg. frac", "result");
-  for (const auto& r : results)
-    std::printf("%-16s %10llu %8.2f %12.3f %12.3f %12.3f %10.4f  %s\n", r.name.c_str(),
-                static_cast<unsigned long long>(r.rays), r.seconds, 100 * r.max_abs_error_rel_peak,
-                100 * r.rms_error_rel_peak, 100 * r.max_std_error_rel_peak, r.negative_energy_fraction,
+  std::printf("%-16s %10s %8s %12s %12s %12s %10s  %s\n", "case", "rays", "seconds", "max err",
+              "rms err", "noise", "neg. frac", "result");
+  for (const auto& r : results) {
+    // Errors in % of the pattern's peak, or level differences in dB for the diffraction cases.
+    const double scale = r.errors_in_db ? 1.0 : 100.0;
+    const char* unit = r.errors_in_db ? "dB" : " %";
+    std::printf("%-16s %10llu %8.2f %10.3f%s %10.3f%s %10.3f%s %10.4f  %s\n", r.name.c_str(),
+                static_cast<unsigned long long>(r.rays), r.seconds, scale * r.max_abs_error_rel_peak, unit,
+                scale * r.rms_error_rel_peak, unit, scale * r.max_std_error_rel_peak, unit, r.negative_energy_fraction,
                 r.passed ? "pass" : "MISSED target");
+  }
   for (const auto& r : results)
     if (!r.detail.empty()) std::printf("%s: %s\n", r.name.c_str(), r.detail.c_str());
   for (const auto& r : results)

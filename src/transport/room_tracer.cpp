@@ -61,6 +61,12 @@ namespace {
 // The emission direction is the only quasi-random part of a path (a 2D R2 lattice, core::ChunkSampler):
 // it decides the early reflections, where QMC pays; bounces use the chunk's Rng.
 constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
+// With occluders, the first WBSDF draw (the x shift's two uniforms) and the band choice are quasi-random
+// too, paired with the emission (5D R-sequence, φ₅ the root of x⁶ = x + 1): the edge diffraction a listener
+// hears is a small signed residue of many rays, and stratifying (emission point, shift, band) together
+// lowers its noise, as the optical tracer does for its first scattering (transport/tracer.cpp).
+constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.6844301295853426,
+                                    0.6031687406857283, 0.5315553977157913};
 
 // Per material, the event probabilities (band means, fixed) and the per-band weights that keep every band
 // unbiased for them: E[e_b'] = e_b·(p_r·(1 − α_b)/p_r + p_t·τ_b/p_t) = e_b·((1 − α_b) + τ_b), and likewise
@@ -224,12 +230,18 @@ struct Tracer {
     double lambda_m = 0.0;
     int diffractions = 0;
     double e_start = 0.0;  ///< the level Russian roulette is relative to
+    bool has_qmc = false;  ///< qmc[] holds the first occluder's quasi-random uniforms (shift x2, band)
+    double qmc[3] = {0, 0, 0};
   };
 
   void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
-                 const core::BandArray& energy0) const {
+                 const core::BandArray& energy0, const double* qmc = nullptr) const {
     Path s{start, dir0, energy0};
     s.e_start = *std::max_element(s.e.begin(), s.e.begin() + bands);
+    if (qmc) {
+      s.has_qmc = true;
+      std::copy(qmc, qmc + 3, s.qmc);
+    }
     follow(acc, rng, s);
   }
 
@@ -242,12 +254,15 @@ struct Tracer {
     for (int b = 0; b < bands; ++b)
       if (s.e[b] != 0.0) live[n++] = b;
     if (n == 0) return;
-    const int b = live[std::min(n - 1, static_cast<int>(rng.uniform() * n))];
+    // One uniform picks the band and, rescaled within the band's slot, the frequency.
+    const double x = (s.has_qmc ? s.qmc[2] : rng.uniform()) * n;
+    const int pick = std::min(n - 1, static_cast<int>(x));
+    const int b = live[pick];
     const double e_b = s.e[b] * n;
     s.e = core::bandFill(0.0);
     s.e[b] = e_b;
     s.band = b;
-    const double f = room.bands.lowerHz(b) + rng.uniform() * (room.bands.upperHz(b) - room.bands.lowerHz(b));
+    const double f = room.bands.lowerHz(b) + std::min(1.0, x - pick) * (room.bands.upperHz(b) - room.bands.lowerHz(b));
     s.lambda_m = opt.speed_of_sound_m_s / f;
   }
 
@@ -256,6 +271,7 @@ struct Tracer {
     ++acc.occluder_events;
     double xi[4];
     for (double& v : xi) v = rng.uniform();
+    if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
     const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
     if (!sc.alive) {
       if (sc.evanescent) ++acc.evanescent;
@@ -415,7 +431,8 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     return r;
   };
   auto body = [&](RoomTraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
-    core::ChunkSampler sampler(rng, kGenerators, 2, true);
+    const bool qmc5 = options.occluders != nullptr;
+    core::ChunkSampler sampler(rng, qmc5 ? kGenerators5 : kGenerators, qmc5 ? 5 : 2, true);
     core::FastRng fast(rng);  // the bounces' uniforms
     for (std::uint64_t i = begin; i < end; ++i) {
       int dim = 0;
@@ -445,7 +462,13 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
       const double gain = src.directivity.a == 1.0 ? 1.0 : directivityGain(src.directivity, dir.dot(axis));
       core::BandArray e = core::bandFill(0.0);
       for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain * scale;
-      tr.tracePath(acc, fast, src.position_m, dir, e);
+      if (qmc5) {
+        double q[3];
+        for (double& v : q) v = sampler.next(i - begin, dim);
+        tr.tracePath(acc, fast, src.position_m, dir, e, q);
+      } else {
+        tr.tracePath(acc, fast, src.position_m, dir, e);
+      }
     }
     acc.rays += end - begin;
     for (auto& h : acc.listeners) h.closeChunk();

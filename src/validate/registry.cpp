@@ -19,12 +19,15 @@ CaseInfo shoeboxIsmCase();
 CaseInfo specularDecayCase();
 CaseInfo diffuseEyringCase();
 CaseInfo decayMetricsCase();
+CaseInfo halfPlaneCase();
+CaseInfo barrierCase();
+CaseInfo doorRoomCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
                                          slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
                                          freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
-                                         diffuseEyringCase(),  decayMetricsCase()};
+                                         diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase()};
   return all;
 }
 

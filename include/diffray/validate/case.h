@@ -43,6 +43,8 @@ struct CaseResult {
   std::vector<Row> rows;
   std::map<std::string, double> extra;  ///< case-specific figures (energy balance, per-frequency errors)
   std::string detail;  ///< one line on what was compared, for cases whose errors are not "% of a peak"
+  /// The error figures are level differences in dB (diffraction cases), not fractions of a peak.
+  bool errors_in_db = false;
 };
 
 struct RunOptions {

@@ -26,3 +26,26 @@ struct HalfPlaneSpec {
 room::Room makeHalfPlaneScene(const HalfPlaneSpec& spec);
 
 }  // namespace diffray::validate
+
+namespace diffray::validate {
+
+/// A door in a thin black (absorbing) screen standing on a rigid floor, otherwise free field: the path
+/// through a doorway between two rooms, without the rooms' reverberation. Frame: the screen is the plane
+/// x = 0, the floor z = 0, the door spans y in [−width/2, width/2], z in [0, height]; the source is at
+/// x < 0 (room A), the listeners at x > 0 (room B). The door is a WBSDF opening with sill "floor".
+struct DoorSpec {
+  double width_m = 0.9, height_m = 2.1;
+  core::Vec3 source_m{-2.5, 0.0, 1.5};
+  std::vector<core::Vec3> listeners_m;
+  double radius_m = 0.15;
+  double screen_m = 40.0;  ///< half-extent of the screen and the floor
+  bool floor = true;       ///< false: no floor, the door is an opening in a free-standing screen (sill none)
+};
+
+room::Room makeDoorScene(const DoorSpec& spec);
+
+/// The angle (degrees) by which `listener` lies in the shadow of the door's vertical jambs, seen from
+/// `source` in the horizontal plane: > 0 hidden behind a jamb, < 0 in view through the opening.
+double doorShadowAngleDeg(const DoorSpec& spec, const core::Vec3& listener);
+
+}  // namespace diffray::validate

@@ -1,0 +1,44 @@
+#pragma once
+// The models of a comparison that give a complex pressure at a point (issue 3/5 diffraction): UTD
+// (utd/paths.h) on the scene's own mesh, and the exact reference that fits the scene, if one does
+// (reference/half_plane_point.h for one free edge or barrier, reference/aperture_point.h for one door or
+// slit in a plane screen). Both return the field of a unit point source relative to its free field at the
+// same distance, |p·R|² (so 0 dB is free field), at one frequency, or averaged over a band on a uniform
+// frequency grid and over the listener's sphere (a 6-point degree-3 ball rule: the WBSDF model scores the
+// fluence through the sphere, so the point models are read the same way). Thread-safe after construction.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "diffray/core/math.h"
+#include "diffray/room/room.h"
+
+namespace diffray::compare {
+
+class PointModel {
+ public:
+  virtual ~PointModel() = default;
+  virtual std::string name() const = 0;
+  /// |p(f)·R|² at `listener` for the source at `source`, for each frequency in `freqs_hz`.
+  virtual std::vector<double> relativeEnergy(const core::Vec3& source, const core::Vec3& listener,
+                                             const std::vector<double>& freqs_hz) const = 0;
+};
+
+/// The exact reference for `room` if its occluders fit one (else null, with the reason in `why_not`). The
+/// room's other geometry is ignored by the reference (a half-plane is infinite; an aperture's screen is
+/// the infinite plane of the door, black, on an optional rigid floor): `assumption` says which, for callers
+/// to print next to the numbers.
+std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double speed_of_sound_m_s, std::string& why_not,
+                                          std::string& assumption);
+
+/// UTD on the room's mesh (first- and second-order diffraction, direct and first-order reflections, face
+/// reflection from the materials).
+std::unique_ptr<PointModel> utdModelFor(const room::Room& room, double speed_of_sound_m_s);
+
+/// Band average of relativeEnergy over `points` uniform frequencies in [lo, hi] and over the 6-point ball
+/// rule of radius `radius_m` around `listener`, relative to the free field at the ball's centre.
+double bandRelativeEnergy(const PointModel& m, const core::Vec3& source, const core::Vec3& listener, double radius_m,
+                          double lo_hz, double hi_hz, int points);
+
+}  // namespace diffray::compare
