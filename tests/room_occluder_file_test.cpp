@@ -362,6 +362,9 @@ TEST(RoomOccluderFileErrors, FramesAndSizes) {
   expectMessage(errorOfOccluder(grating), {"rooms/x.json: occluders[0]", "must not be parallel"});
   bad = grating;
   bad["up"] = {1, 0, 0};
+  bad["modulation_m"] = 5000;  // wbsdf::PhaseGrating's limit, named here rather than at the first trace
+  expectMessage(errorOfOccluder(bad), {"rooms/x.json: occluders[0].modulation_m: must be at most 1000"});
+  bad["modulation_m"] = 2;
   bad["material"] = "nope";
   expectMessage(errorOfOccluder(bad), {"rooms/x.json: occluders[0].material:", "\"nope\""});
 }

@@ -212,7 +212,9 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       occ.half_y_m = 0.5 * o["height_m"].positive();
       occ.x.kind = OccluderAxis::Kind::Grating;
       occ.x.period_m = o["period_m"].positive();
+      // The phase amplitude m/2 (radians) wbsdf::PhaseGrating accepts; checked here to name the field.
       occ.x.modulation_m = o["modulation_m"].positive();
+      if (occ.x.modulation_m > 1000.0) o["modulation_m"].fail("must be at most 1000 (phase amplitude m/2 ≤ 500 rad)");
       occ.reflect = true;
       occ.material = resolve(o["material"]);
       addOccluderRect(room, occ, occ.material);
