@@ -102,6 +102,16 @@ expect_ir_error "lossless 1 cm box (endless bounces)" "{\"materials\": {\"w\": {
 expect_ir_error "8 kHz band at 8 kHz sampling" "{$mat, $box, $src, $lis, \"output\": {\"sample_rate_hz\": 8000}}"
 expect_ir_error "one triangle, no volume" "{$mat, \"geometry\": [{\"polygon\": {\"vertices\": [[0,0,0],[1,0,0],[0,1,0]], \"material\": \"w\"}}], $src, $lis}"
 expect_ir_error "ISM order out of range" "$good" --ism-order 99
+# Occluders (rooms/README.md, "occluders") and the diffraction options.
+door='"type": "door", "centre": [2,1.5,1], "normal": [1,0,0], "width_m": 0.9, "height_m": 2'
+expect_ir_error "unknown occluder type" "{$mat, $box, $src, $lis, \"occluders\": [{\"type\": \"window\"}]}"
+expect_ir_error "unknown occluder key"  "{$mat, $box, $src, $lis, \"occluders\": [{$door, \"sil\": \"none\"}]}"
+expect_ir_error "occluder up along its normal" "{$mat, $box, $src, $lis, \"occluders\": [{$door, \"up\": [2,0,0]}]}"
+expect_ir_error "door on a missing group" "{$mat, $box, $src, $lis, \"occluders\": [{\"type\": \"door\", \"group\": \"nope\"}]}"
+expect_ir_error "zero-length edge"      "{$mat, $box, $src, $lis, \"occluders\": [{\"type\": \"edge\", \"start\": [1,1,1], \"end\": [1,1,1], \"open_toward\": [1,0,0]}]}"
+expect_ir_error "duplicate occluder names" "{$mat, $box, $src, $lis, \"occluders\": [{$door, \"name\": \"d\"}, {$door, \"name\": \"d\"}]}"
+expect_ir_error "unknown --diffraction" "$good" --diffraction bogus
+expect_ir_error "--diffraction-order 0" "$good" --diffraction wbsdf --diffraction-order 0
 printf '%s\n' "$good" >"$tmp/room.json"
 expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000
 expect_error "ir: output not a .wav"     ir "$tmp/room.json" -o "$tmp/out.csv" --rays 1000

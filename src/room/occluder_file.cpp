@@ -78,7 +78,8 @@ Occluder opening(const JsonField& o, Room& room, const std::string& type) {
   const bool explicit_rect = !o.has("group");
   if (explicit_rect) {
     occ.origin_m = o["centre"].vec3();
-    setOccluderFrame(occ, unitVector(o["normal"]), up, o["up"].where());
+    // "up" is optional: name the occluder itself when it was not given (o["up"] would fail as missing).
+    setOccluderFrame(occ, unitVector(o["normal"]), up, o.has("up") ? o["up"].where() : o.where());
     occ.half_x_m = 0.5 * o["width_m"].positive();
     occ.half_y_m = 0.5 * o["height_m"].positive();
   } else {
@@ -128,6 +129,12 @@ Occluder edgeZoneOccluder(const Vec3& start, const Vec3& end, const Vec3& open_t
   return occ;
 }
 
+// Claims `name` for entry `o`; a duplicate fails on "name", or on the entry when the name is its default.
+void claimName(std::set<std::string>& names, const std::string& name, const JsonField& o) {
+  if (names.insert(name).second) return;
+  (o.has("name") ? o["name"] : o).fail("duplicate occluder name " + inQuotes(name));
+}
+
 }  // namespace
 
 void setOccluderFrame(Occluder& occ, const Vec3& normal, const Vec3& up, const std::string& field) {
@@ -157,7 +164,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
                    "slit_width_m", "spacing_m"});
       Occluder occ = opening(o, room, type);
       if (occ.name.empty()) occ.name = fallback;
-      if (!names.insert(occ.name).second) o["name"].fail("duplicate occluder name " + inQuotes(occ.name));
+      claimName(names, occ.name, o);
       if (occ.group.empty()) {
         addOccluderRect(room, occ);
       } else {
@@ -170,7 +177,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
     } else if (type == "edge" || type == "barrier") {
       Occluder zone;
       std::string name = o.has("name") ? o["name"].string() : fallback;
-      if (!names.insert(name).second) o["name"].fail("duplicate occluder name " + inQuotes(name));
+      claimName(names, name, o);
       if (type == "edge") {
         o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m"});
         zone = edgeZoneOccluder(o["start"].vec3(), o["end"].vec3(), o["open_toward"].vec3(), edgeZone(o), o.where());
@@ -181,6 +188,10 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
         const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
         const double h = o["height_m"].positive();
+        // Checked here so that the message names the field (Room::addPolygon only knows the group).
+        if (!((p1 - p0).norm() > 0.0)) base.fail("the barrier's base has zero length");
+        if (!(up.cross((p1 - p0).normalized()).norm() > 1e-6))
+          (o.has("up") ? o["up"] : o).fail("\"up\" (default +z) must not be parallel to the barrier's base");
         const int material = resolve(o["material"]);
         room.addPolygon({p0, p1, p1 + h * up, p0 + h * up}, material, "barrier:" + name);
         zone = edgeZoneOccluder(p0 + h * up, p1 + h * up, up, edgeZone(o), o.where());
@@ -194,14 +205,16 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       Occluder occ;
       occ.type = type;
       occ.name = o.has("name") ? o["name"].string() : fallback;
-      if (!names.insert(occ.name).second) o["name"].fail("duplicate occluder name " + inQuotes(occ.name));
+      claimName(names, occ.name, o);
       occ.origin_m = o["centre"].vec3();
       setOccluderFrame(occ, unitVector(o["normal"]), o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1), o.where());
       occ.half_x_m = 0.5 * o["width_m"].positive();
       occ.half_y_m = 0.5 * o["height_m"].positive();
       occ.x.kind = OccluderAxis::Kind::Grating;
       occ.x.period_m = o["period_m"].positive();
+      // The phase amplitude m/2 (radians) wbsdf::PhaseGrating accepts; checked here to name the field.
       occ.x.modulation_m = o["modulation_m"].positive();
+      if (occ.x.modulation_m > 1000.0) o["modulation_m"].fail("must be at most 1000 (phase amplitude m/2 ≤ 500 rad)");
       occ.reflect = true;
       occ.material = resolve(o["material"]);
       addOccluderRect(room, occ, occ.material);
