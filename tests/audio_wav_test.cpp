@@ -7,6 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "diffray/audio/wav.h"
 #include "diffray/core/error.h"
@@ -58,6 +60,21 @@ TEST(AudioWav, Float32RoundTripIsBitExact) {
   ASSERT_NE(f, nullptr);
   EXPECT_EQ(info.format, SF_FORMAT_WAV | SF_FORMAT_FLOAT);
   sf_close(f);
+}
+
+TEST(AudioWav, NoTimestampedChunkSoSameSamplesGiveSameBytes) {
+  // libsndfile's PEAK chunk (float WAV) holds the wall-clock time of writing: with it, two runs with the same
+  // seed wrote different files. The header must hold nothing but the format and the samples.
+  TempDir dir;
+  AudioBuffer a;
+  a.sample_rate_hz = 48000;
+  a.channels = 1;
+  a.samples = {0.25, -0.5, 0.125};
+  writeWavFloat(dir.file("a.wav"), a);
+  std::ifstream in(dir.file("a.wav"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.find("PEAK"), std::string::npos);
+  EXPECT_NE(bytes.find("data"), std::string::npos);
 }
 
 TEST(AudioWav, FailedWriteLeavesNoFileAndKeepsTheOldOne) {

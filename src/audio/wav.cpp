@@ -125,6 +125,9 @@ void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
   {
     SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
     if (!file) throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(nullptr));
+    // No PEAK chunk: libsndfile stamps it with the wall-clock time, so two runs with the same seed wrote
+    // different bytes whenever they fell in different seconds (reproducible runs must be byte-identical).
+    sf_command(file.get(), SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
     const auto frames = static_cast<sf_count_t>(audio.samples.size() / static_cast<size_t>(audio.channels));
     if (sf_writef_double(file.get(), audio.samples.data(), frames) != frames)
       throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(file.get()));

@@ -42,13 +42,21 @@ class HalfPlaneModel : public PointModel {
 };
 
 // The Rayleigh–Sommerfeld reference in the frame of an opening occluder: screen z = 0, the source at z < 0.
+// With a floor and `incoherent`, the direct and the floor-reflected arrivals add as energies, as they do in
+// an energy ray tracer: |U(P)|² + |U(P')|² with U the field of the source through the opening unfolded
+// about the floor (the opening and its mirror image) and P' the listener's mirror image.
 class ApertureModel : public PointModel {
  public:
-  ApertureModel(const room::Occluder& o, double c) : o_(o), c_(c) {
-    screen_.openings.push_back({-o.half_x_m, o.half_x_m, -o.half_y_m, o.half_y_m});
-    if (o.y.mirror_lo) screen_.floor_y_m = -o.half_y_m;
+  ApertureModel(const room::Occluder& o, double c, bool incoherent) : o_(o), c_(c), incoherent_(incoherent) {
+    if (incoherent_ && o.y.mirror_lo) {
+      screen_.openings.push_back({-o.half_x_m, o.half_x_m, -3.0 * o.half_y_m, o.half_y_m});
+      floor_ = -o.half_y_m;
+    } else {
+      screen_.openings.push_back({-o.half_x_m, o.half_x_m, -o.half_y_m, o.half_y_m});
+      if (o.y.mirror_lo) screen_.floor_y_m = -o.half_y_m;
+    }
   }
-  std::string name() const override { return "exact"; }
+  std::string name() const override { return incoherent_ ? "exact-incoherent-floor" : "exact"; }
   std::vector<double> relativeEnergy(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
     const double side = (s - o_.origin_m).dot(o_.normal) < 0.0 ? 1.0 : -1.0;  // the source at z < 0
     const auto frame = [&](const Vec3& p) {
@@ -56,8 +64,15 @@ class ApertureModel : public PointModel {
       return reference::CartesianPoint{d.dot(o_.ex), d.dot(o_.ey), side * d.dot(o_.normal)};
     };
     const double r = (l - s).norm();
+    const reference::CartesianPoint ps = frame(s), pl = frame(l);
+    reference::CartesianPoint mirror = pl;
+    if (floor_) mirror.y_m = 2.0 * *floor_ - pl.y_m;
     std::vector<double> out;
-    for (double fj : f) out.push_back(std::norm(reference::aperturePointSource(c_ / fj, screen_, frame(s), frame(l)) * r));
+    for (double fj : f) {
+      double e = std::norm(reference::aperturePointSource(c_ / fj, screen_, ps, pl) * r);
+      if (floor_) e += std::norm(reference::aperturePointSource(c_ / fj, screen_, ps, mirror) * r);
+      out.push_back(e);
+    }
     return out;
   }
 
@@ -65,6 +80,8 @@ class ApertureModel : public PointModel {
   room::Occluder o_;
   reference::ApertureScreen screen_;
   double c_;
+  bool incoherent_;
+  std::optional<double> floor_;  ///< incoherent mode: the floor's y in the screen frame
 };
 
 class UtdPointModel : public PointModel {
@@ -93,7 +110,7 @@ class UtdPointModel : public PointModel {
 }  // namespace
 
 std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double c, std::string& why_not,
-                                          std::string& assumption) {
+                                          std::string& assumption, bool incoherent_floor) {
   if (room.occluders.size() != 1) {
     why_not = "the exact references fit a scene with exactly one occluder (an edge/barrier or a door/slit); this one has " +
               std::to_string(room.occluders.size());
@@ -107,8 +124,10 @@ std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double c, std:
   }
   if (o.x.kind == Kind::Opening && o.y.kind == Kind::Opening && !o.x.mirror_lo) {
     assumption = "exact: Rayleigh–Sommerfeld over the opening of " + o.name + " in an infinite black screen" +
-                 (o.y.mirror_lo ? " on a rigid floor" : "");
-    return std::make_unique<ApertureModel>(o, c);
+                 (o.y.mirror_lo ? (incoherent_floor ? " on a rigid floor, floor reflection added as energy"
+                                                    : " on a rigid floor")
+                                : "");
+    return std::make_unique<ApertureModel>(o, c, incoherent_floor);
   }
   why_not = "no exact reference for occluder " + o.name + " (type " + o.type + "): references exist for one edge/barrier or one door/slit";
   return nullptr;

@@ -29,8 +29,11 @@ class PointModel {
 /// room's other geometry is ignored by the reference (a half-plane is infinite; an aperture's screen is
 /// the infinite plane of the door, black, on an optional rigid floor): `assumption` says which, for callers
 /// to print next to the numbers.
+/// `incoherent_floor`: for a door on a floor, the direct and floor-reflected arrivals add as energies (the
+/// reference an energy ray tracer such as the WBSDF model can match: it cannot produce the coherent ground
+/// interference between two different paths, which UTD and the coherent reference do).
 std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double speed_of_sound_m_s, std::string& why_not,
-                                          std::string& assumption);
+                                          std::string& assumption, bool incoherent_floor = false);
 
 /// UTD on the room's mesh (first- and second-order diffraction, direct and first-order reflections, face
 /// reflection from the materials).
