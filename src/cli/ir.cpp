@@ -117,8 +117,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
   sub->add_option("--diffraction", opts->diffraction,
                   "none: geometric acoustics (doorways pass rays straight); wbsdf: rays diffract at the room's "
-                  "occluders (rooms/README.md)")
-      ->check(CLI::IsMember({"none", "wbsdf"}))
+                  "occluders (rooms/README.md); utd: edge-diffraction paths (Kouyoumjian-Pathak) of the mesh's edges "
+                  "added to the geometric response")
+      ->check(CLI::IsMember({"none", "wbsdf", "utd"}))
       ->capture_default_str();
   sub->add_option("--diffraction-order", opts->diffraction_order,
                   "wbsdf: occluder scatterings per ray path; later crossings pass straight (each one multiplies "
@@ -239,6 +240,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
           {"timed_out", sim.timed_out},
           {"occluder_events", sim.occluder_events},
           {"evanescent", sim.evanescent},
+          {"utd_diffraction_paths", sim.diffraction_paths},
           {"queries_per_ray", sim.rays ? static_cast<double>(sim.segments) / static_cast<double>(sim.rays) : 0.0}}},
         {"timing_s", {{"trace", sim.trace_seconds}, {"image_sources", sim.ism_seconds}, {"synthesis_and_metrics", synth_s}}},
         {"warnings", all_warnings},

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner validate = diffray::cli::addValidateCommand(app, common);
   diffray::cli::Runner wdf = diffray::cli::addWdfCommand(app, common);
   diffray::cli::Runner metrics = diffray::cli::addMetricsCommand(app, common);
+  diffray::cli::Runner compare = diffray::cli::addCompareCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("validate")) return validate();
     if (app.got_subcommand("wdf")) return wdf();
     if (app.got_subcommand("metrics")) return metrics();
+    if (app.got_subcommand("compare")) return compare();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <algorithm>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -148,6 +149,76 @@ void writeDecayPlot(const std::string& png_path, const std::vector<std::string>&
     }
     script << "unset multiplot\n";
     return script.str();
+  });
+}
+
+}  // namespace diffray::cli
+
+namespace diffray::cli {
+
+void writeComparePlot(const std::string& png_path, const room::Room& room, const compare::SceneComparison& c) {
+  runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
+    const fs::path dir(dir_name);
+    const int nl = std::min<int>(6, static_cast<int>(room.listeners.size()));
+    bool angles = room.listeners.size() > 1;
+    for (const auto& a : c.shadow_angle_deg) angles = angles && a.has_value();
+    const int nb = room.bands.size();
+    const int panels = nl + (angles ? nb : 0), cols = std::min(3, panels), rows = (panels + cols - 1) / cols;
+    static const char* kModels[] = {"exact", "exact-incoherent-floor", "utd", "wbsdf"};
+    static const char* kColours[] = {"#000000", "#777777", "#1f77b4", "#d62728"};
+    std::ostringstream s;
+    s << "set terminal pngcairo size " << 520 * cols << "," << 360 * rows << " font 'sans,9'\n"
+      << "set output " << quoted(tmp_png) << "\nset multiplot layout " << rows << "," << cols << "\n"
+      << "set grid\nset key bottom left font 'sans,8'\nset ylabel 'level re free field (dB)'\n";
+    // Level against frequency, per listener: fine-grid lines and band points per model.
+    for (int l = 0; l < nl; ++l) {
+      std::string plots;
+      for (int m = 0; m < 4; ++m) {
+        const fs::path fine = dir / ("f" + std::to_string(l) + "_" + std::to_string(m) + ".dat");
+        const fs::path band = dir / ("b" + std::to_string(l) + "_" + std::to_string(m) + ".dat");
+        std::ofstream ff(fine), fb(band);
+        int n_fine = 0, n_band = 0;
+        for (const auto& r : c.rows) {
+          if (r.listener != l || r.model != kModels[m] || !std::isfinite(r.level_db)) continue;
+          (r.band ? fb : ff) << r.freq_hz << ' ' << r.level_db << ' ' << (std::isfinite(r.std_error_db) ? r.std_error_db : 0.0) << '\n';
+          ++(r.band ? n_band : n_fine);
+        }
+        const std::string colour = std::string("lc rgb '") + kColours[m] + "'";
+        if (n_fine) plots += (plots.empty() ? "" : ", ") + quoted(fine.string()) + " u 1:2 w l " + colour + " title '" + kModels[m] + "'";
+        if (n_band)
+          plots += (plots.empty() ? "" : ", ") + quoted(band.string()) + (m == 3 ? " u 1:2:3 w yerrorbars pt 7 ps 0.8 " : " u 1:2 w p pt 6 ps 1.2 ") +
+                   colour + " title '" + kModels[m] + " (band)'";
+      }
+      std::ostringstream title;
+      title << room.listeners[l].name;
+      if (c.shadow_angle_deg[l]) title << ", " << std::lround(*c.shadow_angle_deg[l]) << " deg past the shadow boundary";
+      s << "set logscale x\nset xlabel 'frequency (Hz)'\nset title " << quoted(title.str()) << "\n"
+        << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\nunset logscale x\n";
+    }
+    // Level against angle past the shadow boundary, per band.
+    if (angles) {
+      for (int b = 0; b < nb; ++b) {
+        std::string plots;
+        for (int m = 0; m < 4; ++m) {
+          const fs::path path = dir / ("a" + std::to_string(b) + "_" + std::to_string(m) + ".dat");
+          std::ofstream f(path);
+          std::vector<std::pair<double, const compare::LevelRow*>> pts;
+          for (const auto& r : c.rows)
+            if (r.band && r.model == kModels[m] && r.band_label == room.bands.label(b) && std::isfinite(r.level_db))
+              pts.push_back({*c.shadow_angle_deg[r.listener], &r});
+          std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& z) { return a.first < z.first; });
+          for (const auto& [a, r] : pts) f << a << ' ' << r->level_db << ' ' << (std::isfinite(r->std_error_db) ? r->std_error_db : 0.0) << '\n';
+          if (pts.empty()) continue;
+          const std::string colour = std::string("lc rgb '") + kColours[m] + "'";
+          plots += (plots.empty() ? "" : ", ") + quoted(path.string()) +
+                   (m == 3 ? " u 1:2:3 w yerrorlines pt 7 ps 0.6 " : " u 1:2 w lp pt 6 ps 0.6 ") + colour + " title '" + kModels[m] + "'";
+        }
+        s << "set xlabel 'angle past the shadow boundary (deg)'\nset title " << quoted(room.bands.label(b) + " Hz band") << "\n"
+          << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\n";
+      }
+    }
+    s << "unset multiplot\n";
+    return s.str();
   });
 }
 

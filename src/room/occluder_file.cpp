@@ -34,6 +34,16 @@ Vec3 unitVector(const JsonField& f) {
   return v.normalized();
 }
 
+// "faces": the boundary condition the WBSDF's edge rays are weighted for (room/occluder.h).
+OccluderAxis::Faces faces(const JsonField& o, OccluderAxis::Faces fallback) {
+  if (!o.has("faces")) return fallback;
+  const std::string f = o["faces"].string();
+  if (f == "rigid") return OccluderAxis::Faces::Rigid;
+  if (f == "soft") return OccluderAxis::Faces::Soft;
+  if (f == "kirchhoff") return OccluderAxis::Faces::Kirchhoff;
+  o["faces"].fail("must be \"rigid\", \"soft\" or \"kirchhoff\", got \"" + f + "\"");
+}
+
 double edgeZone(const JsonField& o) { return o.has("extent_m") ? o["extent_m"].positive() : kDefaultEdgeZoneM; }
 
 // A door or slit given by an existing opening group of the mesh: its frame and rectangle from the group's
@@ -160,9 +170,10 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
     const std::string type = o["type"].string();
     const std::string fallback = type + std::to_string(i + 1);
     if (type == "door" || type == "slit") {
-      o.allowKeys({"type", "name", "group", "centre", "normal", "up", "width_m", "height_m", "sill", "slits",
+      o.allowKeys({"type", "name", "group", "centre", "normal", "up", "width_m", "height_m", "sill", "faces", "slits",
                    "slit_width_m", "spacing_m"});
       Occluder occ = opening(o, room, type);
+      occ.x.faces = occ.y.faces = faces(o, OccluderAxis::Faces::Kirchhoff);
       if (occ.name.empty()) occ.name = fallback;
       claimName(names, occ.name, o);
       if (occ.group.empty()) {
@@ -179,10 +190,10 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       std::string name = o.has("name") ? o["name"].string() : fallback;
       claimName(names, name, o);
       if (type == "edge") {
-        o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m"});
+        o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m", "faces"});
         zone = edgeZoneOccluder(o["start"].vec3(), o["end"].vec3(), o["open_toward"].vec3(), edgeZone(o), o.where());
       } else {
-        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m"});
+        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m", "faces"});
         const JsonField base = o["base"];
         base.arraySize(2);
         const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
@@ -197,6 +208,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         zone = edgeZoneOccluder(p0 + h * up, p1 + h * up, up, edgeZone(o), o.where());
         zone.type = "barrier";
       }
+      zone.x.faces = faces(o, OccluderAxis::Faces::Rigid);
       zone.name = name;
       addOccluderRect(room, zone);
     } else if (type == "grating") {

@@ -23,5 +23,6 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common);
 Runner addWdfCommand(CLI::App& app, CommonOptions& common);
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
 Runner addIrCommand(CLI::App& app, CommonOptions& common);
+Runner addCompareCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

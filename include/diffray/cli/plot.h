@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "diffray/compare/scene_compare.h"
+#include "diffray/room/room.h"
+
 #include "diffray/ir/response.h"
 #include "diffray/validate/case.h"
 
@@ -25,5 +28,11 @@ void writeValidationPlot(const std::string& png_path, const std::vector<validate
 /// responses' total histograms (`diffray ir --plot`). Throws core::InputError naming --plot on failure.
 void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
                     const std::vector<ir::EnergyResponse>& responses);
+
+/// `diffray compare --plot`: one panel per listener (up to six) of level re free field against frequency
+/// (UTD and exact on the fine grid as lines, band levels as points), then one panel per band of level against
+/// the listeners' angle past the shadow boundary when the scene defines one. Throws core::InputError naming
+/// --plot on failure.
+void writeComparePlot(const std::string& png_path, const room::Room& room, const compare::SceneComparison& c);
 
 }  // namespace diffray::cli

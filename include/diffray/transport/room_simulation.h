@@ -25,7 +25,9 @@ struct RoomSimulationOptions {
   double length_s = 0.0;   ///< 0 = the room file's (or auto)
   bool brute_force = false;  ///< tests only: the brute-force intersector
   /// "none": occluders are plain surfaces (doorways pass rays straight); "wbsdf": rays diffract at the
-  /// room's occluders (RoomTraceOptions::occluders) and image sources do not pass through them.
+  /// room's occluders (RoomTraceOptions::occluders) and image sources do not pass through them; "utd":
+  /// geometric rays and image sources plus the UTD edge-diffraction paths of the mesh's edges (utd/paths.h)
+  /// as exact arrivals.
   std::string diffraction = "none";
   int max_diffractions = 1;  ///< WBSDF scatterings per path (RoomTraceOptions::max_diffractions)
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
@@ -46,6 +48,7 @@ struct RoomSimulation {
   std::uint64_t rays = 0, segments = 0, escaped = 0, roulette_killed = 0, timed_out = 0;
   std::size_t image_sources = 0;  ///< valid image-source paths over all pairs
   std::uint64_t occluder_events = 0, evanescent = 0;  ///< WBSDF scatterings, and the rays they ended
+  std::size_t diffraction_paths = 0;  ///< UTD: diffraction paths added as arrivals
   double trace_seconds = 0.0, ism_seconds = 0.0;
   std::vector<std::string> warnings;
 };

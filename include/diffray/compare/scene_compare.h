@@ -1,0 +1,58 @@
+#pragma once
+// `diffray compare` (issue 3/5 diffraction, item 4): the level at each listener of a scene, relative to the
+// free field at the same distance, from each model — the WBSDF ray tracer per band, UTD and the exact
+// reference per band and on a fine frequency grid — with, per listener, its angle past the shadow boundary
+// of the scene's occluder where one is defined. Source 0 of the scene; no air absorption (it would scale
+// every model alike). Band levels of UTD and the exact reference are energy averages over the band and the
+// listener's sphere (compare/point_models.h); fine-grid levels are at the listener's centre. Pure function
+// of its arguments; the WBSDF run uses every core.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "diffray/room/room.h"
+
+namespace diffray::compare {
+
+struct CompareOptions {
+  std::vector<std::string> models{"wbsdf", "utd", "exact"};
+  std::uint64_t rays = 1'000'000;
+  std::uint64_t seed = 1;
+  int band_points = 32;        ///< frequencies per band for the band levels of UTD and exact
+  int fine_per_octave = 24;    ///< fine-grid frequencies per octave (UTD, exact), log-spaced
+  /// Aim every WBSDF ray at the scene's single occluder (its rectangle; a door on a floor with its mirror
+  /// image): far fewer rays for the same noise, valid only when every path to the listeners crosses it.
+  bool aim = false;
+  std::function<void(std::uint64_t)> on_progress;
+};
+
+struct LevelRow {
+  int listener = 0;
+  std::string model;       ///< "wbsdf", "utd", "exact" or "exact-incoherent-floor"
+  double freq_hz = 0.0;    ///< the band's nominal centre for band rows
+  bool band = true;        ///< a band level (else a fine-grid frequency)
+  std::string band_label;  ///< "250" … for band rows
+  double level_db = 0.0;
+  double std_error_db = 0.0;  ///< WBSDF: the noise of the level (0 for the deterministic models)
+};
+
+struct SceneComparison {
+  std::vector<LevelRow> rows;
+  std::vector<std::optional<double>> shadow_angle_deg;  ///< per listener: + into the shadow
+  std::string exact_note;  ///< the reference's assumption, or why there is none
+  bool exact_available = false;
+  std::vector<std::string> warnings;
+  std::uint64_t rays = 0;
+  double wbsdf_seconds = 0.0, utd_seconds = 0.0, exact_seconds = 0.0;
+};
+
+SceneComparison compareScene(const room::Room& room, const CompareOptions& options);
+
+/// The listener's angle past the shadow boundary of the room's single occluder, seen from the source:
+/// an edge's (around the edge), a door's or slit's (across its nearer side edge, in the plane through
+/// the source spanned by the occluder's normal and x axis). Empty when the scene has no single occluder.
+std::optional<double> shadowAngleDeg(const room::Room& room, const core::Vec3& source, const core::Vec3& listener);
+
+}  // namespace diffray::compare

@@ -1,0 +1,161 @@
+// `diffray compare SCENE.json`: the level at each listener relative to free field from the WBSDF ray tracer,
+// UTD and the exact reference that fits the scene (compare/scene_compare.h), as a table of levels and dB
+// errors against the exact reference per band, JSON lines (one object per listener, model and frequency),
+// a CSV file and a PNG of level against frequency and against the listener's angle past the shadow
+// boundary. Any scene file works (rooms/README.md, "occluders"); the exact reference exists for one edge or
+// barrier (Macdonald's half-plane) or one door or slit (Rayleigh–Sommerfeld).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "diffray/cli/commands.h"
+#include "diffray/cli/plot.h"
+#include "diffray/compare/scene_compare.h"
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/core/progress.h"
+#include "diffray/room/scene_file.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct CompareCliOptions {
+  std::string scene;
+  std::string models = "wbsdf,utd,exact";
+  std::string csv, plot;
+  std::uint64_t rays = 1'000'000;
+  int fine = 24;
+  bool aim = false;
+};
+
+std::vector<std::string> splitModels(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string m; std::getline(in, m, ',');) {
+    if (m != "wbsdf" && m != "utd" && m != "exact")
+      throw core::InputError("--models", "unknown model \"" + m + "\" (a comma-separated list of wbsdf, utd, exact)");
+    out.push_back(m);
+  }
+  if (out.empty()) throw core::InputError("--models", "give at least one of wbsdf, utd, exact");
+  return out;
+}
+
+// Band level of `model` at listener l and band label, or NaN.
+double bandLevel(const compare::SceneComparison& c, int l, const std::string& model, const std::string& band) {
+  for (const auto& r : c.rows)
+    if (r.band && r.listener == l && r.model == model && r.band_label == band) return r.level_db;
+  return NAN;
+}
+
+void printTable(const room::Room& room, const compare::SceneComparison& c) {
+  const bool incoherent = !std::isnan(bandLevel(c, 0, "exact-incoherent-floor", room.bands.label(0)));
+  const std::string ref_w = incoherent ? "exact-incoherent-floor" : "exact";
+  std::printf("%s: exact reference: %s\n", room.name.c_str(), c.exact_note.c_str());
+  for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+    const room::Listener& li = room.listeners[l];
+    std::printf("\nlistener %s at (%.2f, %.2f, %.2f) m", li.name.c_str(), li.position_m.x(), li.position_m.y(), li.position_m.z());
+    if (c.shadow_angle_deg[l]) std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
+    std::printf("\n%8s %16s %9s %9s", "band Hz", "wbsdf dB", "utd dB", "exact dB");
+    if (incoherent) std::printf(" %11s", "exact-inc dB");
+    std::printf(" %13s %11s\n", "wbsdf-exact", "utd-exact");
+    for (int b = 0; b < room.bands.size(); ++b) {
+      const std::string band = room.bands.label(b);
+      double se = NAN;
+      for (const auto& r : c.rows)
+        if (r.band && r.listener == static_cast<int>(l) && r.model == "wbsdf" && r.band_label == band) se = r.std_error_db;
+      const double w = bandLevel(c, static_cast<int>(l), "wbsdf", band), u = bandLevel(c, static_cast<int>(l), "utd", band);
+      const double e = bandLevel(c, static_cast<int>(l), "exact", band), ew = bandLevel(c, static_cast<int>(l), ref_w, band);
+      std::printf("%8s %9.2f ±%5.2f %9.2f %9.2f", band.c_str(), w, se, u, e);
+      if (incoherent) std::printf(" %11.2f", ew);
+      std::printf(" %13.2f %11.2f\n", w - ew, u - e);
+    }
+  }
+  for (const auto& w : c.warnings) std::fprintf(stderr, "diffray: warning: %s\n", w.c_str());
+}
+
+void writeCompareCsv(const std::string& path, const room::Room& room, const compare::SceneComparison& c) {
+  core::writeFileAtomically(path, [&](std::ostream& out) {
+    out << "listener,model,freq_hz,band,level_db_re_free_field,std_error_db,angle_past_shadow_boundary_deg\n";
+    for (const auto& r : c.rows) {
+      out << room.listeners[r.listener].name << ',' << r.model << ',' << r.freq_hz << ',' << (r.band ? r.band_label : "")
+          << ',' << r.level_db << ',' << r.std_error_db << ',';
+      if (c.shadow_angle_deg[r.listener]) out << *c.shadow_angle_deg[r.listener];
+      out << '\n';
+    }
+  });
+}
+
+}  // namespace
+
+Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
+  auto o = std::make_shared<CompareCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "compare", "Level at each listener relative to free field from the WBSDF ray tracer, UTD edge diffraction and "
+                 "the exact reference (Macdonald's half-plane for one edge/barrier, Rayleigh-Sommerfeld for one "
+                 "door/slit), per band and on a fine frequency grid, with dB errors against the exact reference.");
+  sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")->required();
+  sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
+  addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
+  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->capture_default_str();
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+  sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file");
+  sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)");
+  sub->add_option("--fine-per-octave", o->fine, "fine-grid frequencies per octave for UTD and exact")
+      ->check(CLI::Range(1, 400))
+      ->capture_default_str();
+  sub->add_flag("--aim", o->aim,
+                "aim every WBSDF ray at the scene's single occluder (valid only when every path to the listeners "
+                "crosses it: an edge or a door in free field)");
+  sub->add_flag("--json", common.json, "print one JSON object per listener, model and frequency (JSON lines)");
+  return [o, &common]() {
+    core::ThreadLimit limit(common.threads);
+    std::vector<std::string> warnings;
+    const room::Room room = room::loadRoom(o->scene, &warnings);
+    for (const std::string& out : {o->csv, o->plot})
+      if (!out.empty() && !std::filesystem::is_directory(std::filesystem::absolute(out).parent_path()))
+        throw core::InputError(out, "its folder does not exist");
+    if (!o->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+    compare::CompareOptions co;
+    co.models = splitModels(o->models);
+    co.rays = o->rays;
+    co.seed = common.seed;
+    co.fine_per_octave = o->fine;
+    co.aim = o->aim;
+    core::Progress progress("compare " + room.name, o->rays);
+    co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+    const compare::SceneComparison c = compare::compareScene(room, co);
+    progress.finish();
+    if (!o->plot.empty()) writeComparePlot(o->plot, room, c);
+    if (!o->csv.empty()) writeCompareCsv(o->csv, room, c);
+    if (common.json) {
+      for (const auto& r : c.rows) {
+        nlohmann::ordered_json j{{"listener", room.listeners[r.listener].name},
+                                 {"model", r.model},
+                                 {"freq_hz", r.freq_hz},
+                                 {"band", r.band},
+                                 {"level_db_re_free_field", std::isfinite(r.level_db) ? nlohmann::ordered_json(r.level_db) : nlohmann::ordered_json()}};
+        if (r.band) j["band_hz"] = r.band_label;
+        if (r.model == "wbsdf") j["std_error_db"] = std::isfinite(r.std_error_db) ? nlohmann::ordered_json(r.std_error_db) : nlohmann::ordered_json();
+        if (c.shadow_angle_deg[r.listener]) j["angle_past_shadow_boundary_deg"] = *c.shadow_angle_deg[r.listener];
+        std::cout << j.dump() << '\n';
+      }
+      std::cout.flush();
+    } else {
+      printTable(room, c);
+      std::printf("\nWBSDF %llu rays in %.2f s, UTD %.2f s, exact %.2f s\n", static_cast<unsigned long long>(c.rays),
+                  c.wbsdf_seconds, c.utd_seconds, c.exact_seconds);
+    }
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli

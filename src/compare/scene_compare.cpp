@@ -1,0 +1,147 @@
+#include "diffray/compare/scene_compare.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "diffray/compare/point_models.h"
+#include "diffray/compare/wbsdf_levels.h"
+#include "diffray/core/error.h"
+#include "diffray/room/air.h"
+
+namespace diffray::compare {
+
+using core::Vec3;
+using Kind = room::OccluderAxis::Kind;
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Band and fine-grid rows of one point model for every listener (listeners in parallel).
+void pointRows(const room::Room& room, const PointModel& m, const CompareOptions& o, std::vector<LevelRow>& rows) {
+  const Vec3 src = room.sources[0].position_m;
+  const int nl = static_cast<int>(room.listeners.size()), nb = room.bands.size();
+  const double f_lo = room.bands.lowerHz(0), f_hi = room.bands.upperHz(nb - 1);
+  const int n_fine = std::max(2, static_cast<int>(std::ceil(o.fine_per_octave * std::log2(f_hi / f_lo))) + 1);
+  std::vector<double> fine;
+  for (int j = 0; j < n_fine; ++j) fine.push_back(f_lo * std::pow(f_hi / f_lo, static_cast<double>(j) / (n_fine - 1)));
+  std::vector<std::vector<LevelRow>> per(nl);
+  tbb::parallel_for(0, nl, [&](int l) {
+    const room::Listener& li = room.listeners[l];
+    for (int b = 0; b < nb; ++b) {
+      const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
+                                          room.bands.upperHz(b), o.band_points);
+      per[l].push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
+    }
+    const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
+    for (std::size_t j = 0; j < fine.size(); ++j) per[l].push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
+  });
+  for (auto& v : per) rows.insert(rows.end(), v.begin(), v.end());
+}
+
+}  // namespace
+
+std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source, const Vec3& listener) {
+  if (room.occluders.size() != 1) return std::nullopt;
+  const room::Occluder& o = room.occluders[0];
+  if (o.x.kind == Kind::Edge) {
+    // Around the edge, in the plane across it: angles from the screen face (−ex), the source's side +.
+    const Vec3 e0 = o.origin_m - o.half_x_m * o.ex;
+    const auto angle = [&](const Vec3& p, double side) {
+      const Vec3 d = p - e0;
+      double a = std::atan2(side * d.dot(o.normal), -d.dot(o.ex));
+      return a < 0 ? a + 2.0 * core::kPi : a;
+    };
+    const double side = (source - e0).dot(o.normal) >= 0 ? 1.0 : -1.0;
+    const double phi0 = angle(source, side), phi = angle(listener, side);
+    return (phi - core::kPi - phi0) * 180.0 / core::kPi;
+  }
+  if (o.x.kind == Kind::Opening || o.x.kind == Kind::Slits) {
+    // In the plane spanned by ex and the normal: each side edge's boundary continues the line from the
+    // source past it; the listener's angle beyond it, + on the hidden side; the larger of the two.
+    const double side = (source - o.origin_m).dot(o.normal) < 0 ? 1.0 : -1.0;  // source at Z < 0
+    const auto xz = [&](const Vec3& p) {
+      const Vec3 d = p - o.origin_m;
+      return std::make_pair(d.dot(o.ex), side * d.dot(o.normal));
+    };
+    const auto [xs, zs] = xz(source);
+    const auto [xl, zl] = xz(listener);
+    double worst = -1e300;
+    for (const double jamb : {-o.half_x_m, o.half_x_m}) {
+      const double boundary = std::atan2(jamb - xs, -zs), seen = std::atan2(xl - jamb, zl);
+      worst = std::max(worst, jamb > 0 ? seen - boundary : boundary - seen);
+    }
+    return worst * 180.0 / core::kPi;
+  }
+  return std::nullopt;
+}
+
+SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
+  if (room.sources.empty() || room.listeners.empty()) throw core::InputError(room.file, "needs a source and a listener");
+  const double c = room::speedOfSound(room.air);
+  SceneComparison out;
+  if (room.sources.size() > 1) out.warnings.push_back("the scene has several sources: compare uses the first only");
+  for (const room::Listener& l : room.listeners)
+    out.shadow_angle_deg.push_back(shadowAngleDeg(room, room.sources[0].position_m, l.position_m));
+  const auto has = [&](const char* m) { return std::find(o.models.begin(), o.models.end(), m) != o.models.end(); };
+
+  if (has("wbsdf")) {
+    const auto t0 = std::chrono::steady_clock::now();
+    WbsdfRunOptions w;
+    w.rays = o.rays;
+    w.seed = o.seed;
+    w.on_progress = o.on_progress;
+    if (room.occluders.empty()) out.warnings.push_back("the scene has no occluders: the WBSDF model is plain geometric acoustics");
+    if (o.aim) {
+      if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
+      const room::Occluder& d = room.occluders[0];
+      const bool doubled = d.y.kind == Kind::Opening && d.y.mirror_lo;  // the door and its floor image
+      w.aim = true;
+      w.aim_origin = doubled ? d.origin_m - d.half_y_m * d.ey : d.origin_m;
+      w.aim_ex = d.ex;
+      w.aim_ey = d.ey;
+      w.aim_half_x_m = d.half_x_m;
+      w.aim_half_y_m = doubled ? 2.0 * d.half_y_m : d.half_y_m;
+    }
+    const WbsdfLevels lv = wbsdfLevels(room, 0, w);
+    out.rays = lv.rays;
+    for (std::size_t l = 0; l < room.listeners.size(); ++l)
+      for (int b = 0; b < room.bands.size(); ++b) {
+        const BandLevel& bl = lv.listeners[l][b];
+        const double se = bl.ratio > 0 ? 10.0 / std::log(10.0) * bl.ratio_std_error / bl.ratio : INFINITY;
+        out.rows.push_back({static_cast<int>(l), "wbsdf", room.bands.nominalHz(b), true, room.bands.label(b), bl.level_db, se});
+      }
+    out.wbsdf_seconds = since(t0);
+  }
+  if (has("utd")) {
+    const auto t0 = std::chrono::steady_clock::now();
+    pointRows(room, *utdModelFor(room, c), o, out.rows);
+    out.utd_seconds = since(t0);
+  }
+  if (has("exact")) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string why_not, assumption;
+    const auto exact = exactModelFor(room, c, why_not, assumption, false);
+    out.exact_available = exact != nullptr;
+    out.exact_note = exact ? assumption : why_not;
+    if (exact) {
+      pointRows(room, *exact, o, out.rows);
+      std::string a2;
+      const auto incoherent = exactModelFor(room, c, why_not, a2, true);
+      if (incoherent && incoherent->name() != exact->name()) {
+        pointRows(room, *incoherent, o, out.rows);
+        out.exact_note += "; " + incoherent->name() + ": the floor reflection added as energy, what an energy ray "
+                                                       "tracer (the WBSDF model) can match";
+      }
+    }
+    out.exact_seconds = since(t0);
+  }
+  return out;
+}
+
+}  // namespace diffray::compare
