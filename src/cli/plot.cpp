@@ -192,8 +192,9 @@ void writeComparePlot(const std::string& png_path, const room::Room& room, const
       std::ostringstream title;
       title << room.listeners[l].name;
       if (c.shadow_angle_deg[l]) title << ", " << std::lround(*c.shadow_angle_deg[l]) << " deg past the shadow boundary";
-      s << "set logscale x\nset xlabel 'frequency (Hz)'\nset title " << quoted(title.str()) << "\n"
-        << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\nunset logscale x\n";
+      s << "set logscale x\nset xrange [" << room.bands.lowerHz(0) << ":" << room.bands.upperHz(nb - 1)
+        << "]\nset xlabel 'frequency (Hz)'\nset title " << quoted(title.str()) << "\n"
+        << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\nunset logscale x\nset autoscale x\n";
     }
     // Level against angle past the shadow boundary, per band.
     if (angles) {

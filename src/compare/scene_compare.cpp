@@ -107,6 +107,23 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
       w.aim_ey = d.ey;
       w.aim_half_x_m = d.half_x_m;
       w.aim_half_y_m = doubled ? 2.0 * d.half_y_m : d.half_y_m;
+      if (d.y.kind == Kind::Uniform) {
+        // Along an edge the ray keeps its cosine: a path from the source to a listener crosses the zone at an
+        // edge coordinate between theirs (widened by the listener's radius). Aim only there.
+        const double ys = (room.sources[0].position_m - d.origin_m).dot(d.ey);
+        double lo = ys, hi = ys;
+        for (const room::Listener& l : room.listeners) {
+          const double yl = (l.position_m - d.origin_m).dot(d.ey);
+          lo = std::min(lo, yl - l.radius_m);
+          hi = std::max(hi, yl + l.radius_m);
+        }
+        lo = std::max(lo, -d.half_y_m);
+        hi = std::min(hi, d.half_y_m);
+        if (hi > lo) {
+          w.aim_origin = d.origin_m + 0.5 * (lo + hi) * d.ey;
+          w.aim_half_y_m = 0.5 * (hi - lo);
+        }
+      }
     }
     const WbsdfLevels lv = wbsdfLevels(room, 0, w);
     out.rays = lv.rays;

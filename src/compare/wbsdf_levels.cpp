@@ -28,6 +28,7 @@ WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOption
   opt.skip_order = -1;           // no image sources here: the rays carry every path
   opt.speed_of_sound_m_s = c;
   opt.on_progress = options.on_progress;
+  opt.next_event = options.next_event;
   if (options.diffraction && !occluders.empty()) opt.occluders = &occluders;
   transport::EmissionTarget aim{options.aim_origin, options.aim_ex, options.aim_ey, options.aim_half_x_m,
                                 options.aim_half_y_m, options.aim_edge_fraction, options.aim_edge_scale_m};

@@ -27,6 +27,8 @@ std::shared_ptr<const wbsdf::WbsdfTable> tableFor(const room::OccluderAxis& a, d
   return nullptr;
 }
 
+}  // namespace
+
 // The energy factor |1 ± c1/c2|² of OccluderAxis::Faces for a ray arriving along d_in and leaving along
 // d_out across an edge whose open side lies along `open` (unit, in the occluder's plane, perpendicular to the
 // edge) with occluder normal `n`. Angles in the plane across the edge, from the screen face (direction
@@ -48,8 +50,6 @@ double facesFactor(room::OccluderAxis::Faces faces, const Vec3& open, const Vec3
   return std::min(4.0, a * a);
 }
 
-}  // namespace
-
 RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_m) {
   core::requirePositive("shortest wavelength", shortest_wavelength_m);
   of_triangle_.assign(room.mesh.triangleCount(), -1);
@@ -69,6 +69,16 @@ RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_
   }
 }
 
+void RoomOccluders::edgeDistance(const Axis& a, double c, double& four_d, double& open_sign) {
+  double d = a.spec.hi_m - c;
+  open_sign = -1.0;  // the hi edge: its open side lies toward −axis
+  if (a.spec.kind == Kind::Edge || (!a.spec.mirror_lo && c - a.spec.lo_m < d)) {
+    d = c - a.spec.lo_m;
+    open_sign = 1.0;
+  }
+  four_d = 4.0 * std::max(d, kMinEdgeDistanceM);
+}
+
 void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
                                const double* xi, double& u, double& w, double& open_sign) {
   open_sign = 0.0;
@@ -80,13 +90,9 @@ void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double 
     case Kind::Edge: {
       // W = 4d·sinc(4du), d the distance to the nearer diffracting edge (wbsdf/edge_kernel.h); u' = w/(4d),
       // drawn only where the outgoing cosine α + λu' stays within ±alpha_max (the rest is evanescent).
-      double d = a.spec.hi_m - c;
-      open_sign = -1.0;  // the hi edge: its open side lies toward −axis
-      if (a.spec.kind == Kind::Edge || (!a.spec.mirror_lo && c - a.spec.lo_m < d)) {
-        d = c - a.spec.lo_m;
-        open_sign = 1.0;
-      }
-      d = std::max(d, kMinEdgeDistanceM);
+      double four_d;
+      edgeDistance(a, c, four_d, open_sign);
+      const double d = 0.25 * four_d;
       const double scale = 4.0 * d / lambda_m;  // w per unit of direction cosine
       const wbsdf::EdgeKernelSample s =
           wbsdf::edgeKernelSample(std::min(0.0, (-alpha_max - alpha) * scale), std::max(0.0, (alpha_max - alpha) * scale),

@@ -147,14 +147,15 @@ struct Tracer {
   std::vector<double> air_centre_m;  ///< s_k
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
-  // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored.
+  // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
+  // listeners whose score next-event estimation took (bit l of `skip_listeners`).
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
-             const core::BandArray& energy, bool skip) const {
+             const core::BandArray& energy, bool skip, std::uint64_t skip_listeners = 0) const {
     for (std::size_t l = 0; l < spheres.size(); ++l) {
       double t_in, t_out;
       if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
       ++acc.crossings[l];
-      if (skip) continue;
+      if (skip || (l < 64 && (skip_listeners >> l & 1u))) continue;
       const double s_mid = path_m + 0.5 * (t_in + t_out);
       const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
       if (bin < 0) continue;
@@ -230,6 +231,7 @@ struct Tracer {
     double lambda_m = 0.0;
     int diffractions = 0;
     double e_start = 0.0;  ///< the level Russian roulette is relative to
+    std::uint64_t skip_next_score = 0;  ///< listeners (bit l) whose next-segment score next-event estimation took
     bool has_qmc = false;  ///< qmc[] holds the first occluder's quasi-random uniforms (shift x2, band)
     double qmc[3] = {0, 0, 0};
   };
@@ -266,9 +268,44 @@ struct Tracer {
     s.lambda_m = opt.speed_of_sound_m_s / f;
   }
 
+  // Next-event estimation at occluder k (RoomOccluders::expectedSphereScore): every listener in view of the
+  // hit point gets the expected score of the scattered ray's next segment, at its arrival time, with the
+  // air absorption of the whole path. Returns the listeners it served (bit l; the first 64), whose score
+  // of that segment the ray must then skip; the others score it as usual.
+  std::uint64_t nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in) const {
+    const int b = s.band;
+    const double xi[2] = {rng.uniform(), rng.uniform()};  // a door's vertical shift (expectedSphereScore)
+    std::uint64_t served = 0;
+    for (std::size_t l = 0; l < spheres.size() && l < 64; ++l) {
+      const Vec3 q = spheres[l].centre - s.pos;
+      const double L = q.norm();
+      if (!(L > spheres[l].radius_m)) continue;
+      const Vec3 qh = q / L;
+      // In view: nothing between the hit point (just off the occluder's plane, on the listener's side) and
+      // the sphere's near side.
+      const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
+      const SegmentHit h = cast(from, qh);
+      // Hidden listeners are served too: nothing of the segment reaches them straight (estimate 0).
+      served |= std::uint64_t{1} << l;
+      if (h.valid() && h.t < L - spheres[l].radius_m) continue;
+      const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, spheres[l].centre, spheres[l].radius_m, xi);
+      if (std::isnan(v)) {
+        served &= ~(std::uint64_t{1} << l);
+        continue;
+      }
+      if (v == 0.0) continue;
+      const double path = s.path_m + L;
+      const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
+      if (bin < 0) continue;
+      acc.listeners[l].add(b, bin, s.e[b] * v * std::exp(-opt.air_m_per_m[b] * path));
+    }
+    return served;
+  }
+
   // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
   bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
     ++acc.occluder_events;
+    if (opt.next_event && opt.occluders->nextEventSupported(k)) s.skip_next_score = nextEvent(acc, rng, s, k, n_in);
     double xi[4];
     for (double& v : xi) v = rng.uniform();
     if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
@@ -323,7 +360,8 @@ struct Tracer {
       }
       const double remaining = max_path_m - s.path_m;
       const double t_end = std::min(t_hit, remaining);
-      score(acc, pos, dir, t_end, s.path_m, e, s.specular_chain && s.order <= opt.skip_order);
+      score(acc, pos, dir, t_end, s.path_m, e, s.specular_chain && s.order <= opt.skip_order, s.skip_next_score);
+      s.skip_next_score = 0;
       if (opt.in_flight) addInFlight(acc, s.path_m, t_end, e);
       if (!hit.valid()) {
         ++acc.escaped;

@@ -183,6 +183,23 @@ std::vector<Path> UtdModel::paths(const Vec3& source, const Vec3& listener) cons
   }
   if (options_.reflections) addReflections(source, listener, out);
   if (options_.max_order >= 1) addFirstOrder(source, listener, out);
+  // A listener on the incident shadow boundary of an edge (φ = φ′ + π): Embree's visibility of the direct
+  // ray grazing the edge is decided by float rounding, while the diffracted term takes the mean of its two
+  // sides (coefficient.h); the geometric field there is half of the free one, whatever the ray test said.
+  bool on_boundary = false;
+  for (const Path& p : out)
+    if (p.kind == PathKind::Diffraction && p.order == 1 &&
+        std::abs(p.diffractions[0].phi_out - p.diffractions[0].phi_in - core::kPi) < 1e-9)
+      on_boundary = true;
+  if (on_boundary) {
+    if (out.empty() || out[0].kind != PathKind::Direct) {
+      Path direct;
+      direct.points = {source, listener};
+      direct.length_m = (listener - source).norm();
+      out.insert(out.begin(), std::move(direct));
+    }
+    out[0].gain = 0.5;
+  }
   if (options_.max_order >= 2) addSecondOrder(source, listener, out);
   return out;
 }
@@ -192,7 +209,7 @@ std::complex<double> UtdModel::pressure(const Path& path, double freq_hz, double
   core::requirePositive("utd speed of sound", c_m_s);
   const double k = core::kTwoPi * freq_hz / c_m_s;
   const cd phase = std::exp(cd(0.0, -k * path.length_m));
-  if (path.kind == PathKind::Direct) return phase / path.length_m;
+  if (path.kind == PathKind::Direct) return path.gain * phase / path.length_m;
   if (path.kind == PathKind::Reflection)
     return faceReflection(room_.mesh.object_of_triangle[path.triangle], freq_hz) * phase / path.length_m;
   // Diffraction: (1/s′)·Π D_i·A_i·e^{−ik·length}, A_i = √(ρ_i/(s_i(ρ_i + s_i))), ρ_i the unfolded distance

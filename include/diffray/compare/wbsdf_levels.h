@@ -24,6 +24,7 @@ struct WbsdfRunOptions {
   std::uint64_t seed = 1;
   double length_s = 0.5;  ///< arrivals later than this are left out
   bool diffraction = true;  ///< false: occluders are plain surfaces (geometric acoustics, "none")
+  bool next_event = true;   ///< RoomTraceOptions::next_event
   std::function<void(std::uint64_t)> on_progress;
   /// Aim every ray at this rectangle (transport::EmissionTarget); unset: uniform emission.
   bool aim = false;

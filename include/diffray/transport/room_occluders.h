@@ -16,6 +16,13 @@
 
 namespace diffray::transport {
 
+/// The energy factor of OccluderAxis::Faces for a ray arriving along d_in and leaving along d_out across an
+/// edge whose open side lies along `open` (unit, in the occluder's plane, perpendicular to the edge), occluder
+/// normal n: |1 ± cos((φ − φ0)/2)/cos((φ + φ0)/2)|² (+ rigid, − soft; 1 for Kirchhoff), angles in the plane
+/// across the edge from its screen face (−open), capped at 4 (the grazing limit).
+double facesFactor(room::OccluderAxis::Faces faces, const core::Vec3& open, const core::Vec3& n,
+                   const core::Vec3& d_in, const core::Vec3& d_out);
+
 class RoomOccluders {
  public:
   /// `shortest_wavelength_m` sets the range of the tables (slit arrays, gratings).
@@ -37,6 +44,20 @@ class RoomOccluders {
   /// four uniforms in [0, 1).
   Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4]) const;
 
+  /// Next-event estimation (a conditional expectation over the WBSDF draw): the expected score of a listener
+  /// sphere, E[weight · faces · chordWeight/crossSection · 1(the scattered ray crosses the sphere)], per unit
+  /// of the ray's energy, for a ray of wavelength λ meeting occluder k at p along `dir` — what the sphere
+  /// would gain on average from the scattered ray's next segment, computed by quadrature over the directions
+  /// that cross it instead of by one random ray. The x shift is integrated; for two edge axes (a door) the
+  /// y shift is drawn from the uniforms `xi` (its weight multiplies the result), so the estimate is exact
+  /// in expectation over xi. Only for openings and edges (nextEventSupported), not gratings or slit arrays;
+  /// 0 when the sphere lies on the incident side of the plane; NaN when the kernel swings through more than
+  /// 64 periods across the sphere (far from the edges: it averages out, and the ray itself scores as well).
+  /// Visibility between p and the sphere is the caller's business.
+  double expectedSphereScore(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m,
+                             const core::Vec3& centre, double radius_m, const double xi[2]) const;
+  bool nextEventSupported(int k) const;
+
   const room::Occluder& occluder(int k) const { return occluders_[k].spec; }
   int size() const { return static_cast<int>(occluders_.size()); }
 
@@ -54,6 +75,9 @@ class RoomOccluders {
   /// the direction along the axis from the nearer diffracting edge into the opening, 0 if none.
   static void sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
                          const double* xi, double& u, double& w, double& open_sign);
+  /// The edge kernel's scale along an axis at local coordinate c: 4d (d the distance to the nearer
+  /// diffracting edge) and the sign of the direction from that edge into the opening.
+  static void edgeDistance(const Axis& a, double c, double& four_d, double& open_sign);
   std::vector<Entry> occluders_;
   std::vector<int> of_triangle_;
   std::vector<char> mask_;

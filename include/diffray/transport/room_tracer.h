@@ -64,6 +64,10 @@ struct RoomTraceOptions {
   /// the edge kernel's range, so in a reverberant room that crosses a doorway many times the variance grows
   /// geometrically with this number; the first diffraction carries what a listener hears of the bending.
   int max_diffractions = 1;
+  /// Next-event estimation at occluders that support it (RoomOccluders::expectedSphereScore): each WBSDF
+  /// scattering adds to every visible listener the expected score of the scattered ray's next segment, and
+  /// that segment itself is not scored. Unbiased like the plain estimator, with far less noise in shadows.
+  bool next_event = true;
   const EmissionTarget* aim = nullptr;  ///< null: rays leave uniformly over the sphere
 };
 

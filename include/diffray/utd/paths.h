@@ -60,6 +60,9 @@ struct Path {
   int triangle = -1;                     ///< the reflecting triangle (Reflection)
   std::vector<core::Vec3> points;        ///< source, apexes or reflection point, listener
   double length_m = 0.0;
+  /// Geometric paths: ½ when the listener lies on a shadow boundary of a first-order diffraction (within
+  /// 1e-9 rad), where the transition function takes the mean of its two sides; 1 otherwise.
+  double gain = 1.0;
   double delay(double c_m_s) const { return length_m / c_m_s; }
 };
 

@@ -1,0 +1,101 @@
+// Next-event estimation at occluders (RoomOccluders::expectedSphereScore, RoomTraceOptions::next_event):
+// the quadrature's value against brute-force sampling of the same scattering at one hit point (the oracle:
+// RoomOccluders::scatter and the sphere's own chord, averaged over many draws), and whole traces with and
+// without it agreeing within their standard errors (it must change the noise, not the mean).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "diffray/compare/wbsdf_levels.h"
+#include "diffray/receiver/sphere.h"
+#include "diffray/transport/room_occluders.h"
+#include "diffray/validate/diffraction_setup.h"
+
+namespace dt = diffray::transport;
+namespace dv = diffray::validate;
+namespace dr = diffray::room;
+using diffray::core::Vec3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+dr::Room edgeScene(dr::OccluderAxis::Faces faces) {
+  dv::HalfPlaneSpec spec;
+  spec.source_rho_m = 5.0;
+  spec.listener_rho_m = 4.0;
+  spec.listener_phi_rad = {(180.0 + 60.0 - 10.0) * kPi / 180.0, (180.0 + 60.0 + 20.0) * kPi / 180.0};
+  spec.radius_m = 0.3;
+  spec.zone_m = 3.0;
+  spec.faces = faces;
+  return dv::makeHalfPlaneScene(spec);
+}
+
+}  // namespace
+
+TEST(StatOccluderNextEvent, QuadratureMatchesSampledScatterings) {
+  // One hit point on the edge zone, one incident direction, two spheres (lit side, shadow side), three
+  // wavelengths and both face models: the expected score against the mean of sampled scatterings.
+  for (const auto faces : {dr::OccluderAxis::Faces::Kirchhoff, dr::OccluderAxis::Faces::Rigid}) {
+    const dr::Room room = edgeScene(faces);
+    const dt::RoomOccluders occ(room, 0.02);
+    ASSERT_TRUE(occ.nextEventSupported(0));
+    const Vec3 hit(-0.4, 0.0, 0.05);  // 0.4 m from the edge, in the zone (plane y = 0)
+    const Vec3 dir = (hit - room.sources[0].position_m).normalized();
+    for (const double lambda : {1.37, 0.343, 0.0857}) {
+      for (const dr::Listener& l : room.listeners) {
+        const diffray::receiver::Sphere sphere{l.position_m, l.radius_m};
+        const double none[2] = {0.5, 0.5};  // unused: one edge axis
+        const double expected = occ.expectedSphereScore(0, hit, dir, lambda, l.position_m, l.radius_m, none);
+        std::mt19937_64 rng(99);
+        std::uniform_real_distribution<double> uni(0.0, 1.0);
+        const int n = 400000;
+        double sum = 0, sum_sq = 0;
+        for (int i = 0; i < n; ++i) {
+          const double xi[4] = {uni(rng), uni(rng), uni(rng), uni(rng)};
+          const dt::RoomOccluders::Scatter s = occ.scatter(0, hit, dir, lambda, xi);
+          double v = 0.0;
+          if (s.alive) {
+            const double o[3] = {hit.x(), hit.y(), hit.z()}, d[3] = {s.dir.x(), s.dir.y(), s.dir.z()};
+            const double chord = sphere.chordLength(o, d, 0.0, 1e9);
+            v = s.weight * sphere.chordWeight(chord) / sphere.crossSection();
+          }
+          sum += v;
+          sum_sq += v * v;
+        }
+        const double mean = sum / n, se = std::sqrt((sum_sq / n - mean * mean) / n);
+        EXPECT_NEAR(expected, mean, 4.5 * se + 1e-12) << "lambda " << lambda << " listener " << l.name;
+      }
+    }
+  }
+}
+
+TEST(StatOccluderNextEvent, TracesWithAndWithoutAgree) {
+  const dr::Room room = edgeScene(dr::OccluderAxis::Faces::Rigid);
+  diffray::compare::WbsdfRunOptions w;
+  w.rays = 300000;
+  w.aim = true;
+  const dr::Occluder& z = room.occluders[0];
+  w.aim_origin = z.origin_m;
+  w.aim_ex = z.ex;
+  w.aim_ey = z.ey;
+  w.aim_half_x_m = z.half_x_m;
+  w.aim_half_y_m = 0.3;
+  const auto with = diffray::compare::wbsdfLevels(room, 0, w);
+  w.next_event = false;
+  w.rays = 1200000;
+  w.seed = 7;
+  const auto without = diffray::compare::wbsdfLevels(room, 0, w);
+  for (std::size_t l = 0; l < room.listeners.size(); ++l)
+    for (int b = 0; b < room.bands.size(); ++b) {
+      const auto& a = with.listeners[l][b];
+      const auto& c = without.listeners[l][b];
+      const double se = std::hypot(a.ratio_std_error, c.ratio_std_error);
+      EXPECT_NEAR(a.ratio, c.ratio, 4.5 * se) << "listener " << l << " band " << b;
+      // The point of it: less noise for fewer rays.
+      if (l == 1) {
+        EXPECT_LT(a.ratio_std_error, c.ratio_std_error) << "band " << b;
+      }
+    }
+}
