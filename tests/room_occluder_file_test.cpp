@@ -180,6 +180,41 @@ TEST(RoomOccluderFile, ExplicitDoorAddsItsOpeningRectangle) {
   EXPECT_TRUE(room.isOpening(open));
 }
 
+TEST(RoomOccluderFile, DoorLeafIsAPanelTurnedAboutItsHinge) {
+  // Door at (5, 4, 1), normal +y, up +z: ey = +z, ex = ey × normal = −x, so the "left" jamb (−ex) is at
+  // x = 5.4. Turned 90° toward the front (+y), the leaf stands in the plane x = 5.4, y from 4 to 4.8.
+  auto scene = baseScene();
+  scene["occluders"] = {{{"type", "door"}, {"name", "d"}, {"centre", {5, 4, 1}}, {"normal", {0, 1, 0}},
+                         {"width_m", 0.8}, {"height_m", 2},
+                         {"leaf", {{"angle_deg", 90}, {"hinge", "left"}, {"opens", "front"}, {"material", "m"}}}}};
+  const dr::Room room = parse(scene);
+  const GroupInfo g = groupInfo(room, "leaf:d");
+  EXPECT_EQ(g.triangles, 2);
+  EXPECT_NEAR(g.area_m2, 1.6, 1e-12);
+  ASSERT_EQ(g.materials.size(), 1u);
+  EXPECT_EQ(*g.materials.begin(), materialIndex(room, "m"));
+  dr::Vec3 lo(1e9, 1e9, 1e9), hi(-1e9, -1e9, -1e9);
+  for (std::size_t t = 0; t < room.group_of_triangle.size(); ++t) {
+    if (room.group_of_triangle[t] != "leaf:d") continue;
+    for (int k = 0; k < 3; ++k) {
+      lo = lo.cwiseMin(room.mesh.vertices[room.mesh.triangles[t][k]]);
+      hi = hi.cwiseMax(room.mesh.vertices[room.mesh.triangles[t][k]]);
+    }
+  }
+  expectVec(lo, dr::Vec3(5.4, 4.0, 0.0), "leaf's lower corner");
+  expectVec(hi, dr::Vec3(5.4, 4.8, 2.0), "leaf's upper corner");
+  // Errors: a leaf on a slit, an angle out of (1°, 180°), an unknown hinge.
+  expectMessage(errorOfOccluder({{"type", "slit"}, {"centre", {5, 4, 1}}, {"normal", {0, 1, 0}}, {"width_m", 0.8},
+                                 {"height_m", 2}, {"leaf", {{"angle_deg", 90}, {"material", "m"}}}}),
+                {"rooms/x.json", "occluders[0].leaf", "only a door"});
+  expectMessage(errorOfOccluder({{"type", "door"}, {"centre", {5, 4, 1}}, {"normal", {0, 1, 0}}, {"width_m", 0.8},
+                                 {"height_m", 2}, {"leaf", {{"angle_deg", 0}, {"material", "m"}}}}),
+                {"occluders[0].leaf.angle_deg"});
+  expectMessage(errorOfOccluder({{"type", "door"}, {"centre", {5, 4, 1}}, {"normal", {0, 1, 0}}, {"width_m", 0.8},
+                                 {"height_m", 2}, {"leaf", {{"angle_deg", 90}, {"hinge", "top"}, {"material", "m"}}}}),
+                {"occluders[0].leaf.hinge", "left"});
+}
+
 TEST(RoomOccluderFile, SlitsDefaultToNoSillAndFormArrays) {
   auto scene = baseScene();
   scene["occluders"] = {

@@ -120,6 +120,26 @@ Occluder opening(const JsonField& o, Room& room, const std::string& type) {
   return occ;
 }
 
+// A door's leaf: a panel the size of the opening, hinged on its "left" jamb (the one toward −ex in the door's
+// frame) or its "right" one (+ex), turned by angle_deg from shut toward the side `opens` ("front": the side
+// the door's normal points to, or "back"). Plain geometry in its own material: it reflects and absorbs what
+// reaches it; the opening's WBSDF stays the full opening's.
+void addLeaf(const JsonField& leaf, Room& room, const Occluder& door,
+             const std::function<int(const JsonField&)>& resolve) {
+  leaf.allowKeys({"angle_deg", "hinge", "opens", "material"});
+  const double angle = leaf["angle_deg"].numberIn(1.0, 180.0) * core::kPi / 180.0;
+  const std::string hinge = leaf.has("hinge") ? leaf["hinge"].string() : "left";
+  if (hinge != "left" && hinge != "right") leaf["hinge"].fail("must be \"left\" or \"right\", got \"" + hinge + "\"");
+  const std::string opens = leaf.has("opens") ? leaf["opens"].string() : "front";
+  if (opens != "front" && opens != "back") leaf["opens"].fail("must be \"front\" or \"back\", got \"" + opens + "\"");
+  const int material = resolve(leaf["material"]);
+  const double s_hinge = hinge == "left" ? -1.0 : 1.0, s_side = opens == "front" ? 1.0 : -1.0;
+  const Vec3 h = door.origin_m + s_hinge * door.half_x_m * door.ex;  // on the hinge line, mid-height
+  const Vec3 along = -s_hinge * std::cos(angle) * door.ex + s_side * std::sin(angle) * door.normal;
+  const Vec3 up = door.half_y_m * door.ey, across = 2.0 * door.half_x_m * along;
+  room.addPolygon({h - up, h + across - up, h + across + up, h + up}, material, "leaf:" + door.name);
+}
+
 Occluder edgeZoneOccluder(const Vec3& start, const Vec3& end, const Vec3& open_toward, double extent_m,
                           const std::string& field) {
   Occluder occ;
@@ -171,7 +191,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
     const std::string fallback = type + std::to_string(i + 1);
     if (type == "door" || type == "slit") {
       o.allowKeys({"type", "name", "group", "centre", "normal", "up", "width_m", "height_m", "sill", "faces", "slits",
-                   "slit_width_m", "spacing_m"});
+                   "slit_width_m", "spacing_m", "leaf"});
       Occluder occ = opening(o, room, type);
       occ.x.faces = occ.y.faces = faces(o, OccluderAxis::Faces::Kirchhoff);
       if (occ.name.empty()) occ.name = fallback;
@@ -184,6 +204,10 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
             o["group"].fail("face group " + inQuotes(occ.group) + " must have a fully transmitting material (an "
                             "opening, absorption = transmission = 1), the door's hole");
         room.occluders.push_back(occ);
+      }
+      if (o.has("leaf")) {
+        if (type != "door") o["leaf"].fail("only a door has a leaf");
+        addLeaf(o["leaf"], room, occ, resolve);
       }
     } else if (type == "edge" || type == "barrier") {
       Occluder zone;
