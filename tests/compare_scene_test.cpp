@@ -90,6 +90,9 @@ TEST(CompareShadowAngle, DoorwayJambsByHand) {
     const Vec3 l(2.0 * std::cos(b + 30 * kDeg), sign * (0.45 + 2.0 * std::sin(b + 30 * kDeg)), 1.2);
     EXPECT_NEAR(*dc::shadowAngleDeg(room, s, l), 30.0, 1e-9) << sign;
   }
+  // The source behind the door instead (x > 0): the mirror geometry gives the same angles.
+  EXPECT_NEAR(*dc::shadowAngleDeg(room, Vec3(2.5, 0, 1.5), Vec3(-2.5, 0.9, 1.0)), 0.0, 1e-9);
+  EXPECT_NEAR(*dc::shadowAngleDeg(room, Vec3(2.5, 0, 1.5), Vec3(-2.5, 0.0, 1.0)), -2.0 * deg(b), 1e-9);
   // The shipped listeners: −20.4°, 0°, 10°, 30° (README), each checked against the formula by hand.
   const std::map<std::string, double> by_hand = {
       {"in-view", -2.0 * deg(b)},
