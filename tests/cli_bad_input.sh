@@ -144,6 +144,63 @@ if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1
    ! ls "$tmp/in/s1.wav" "$tmp/in/s1.csv" >/dev/null 2>&1; then passes=$((passes + 1)); else
   echo "FAIL: ir: the default output overwrote the room file (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# diffray compare: bad input gives one line and leaves no CSV or PNG behind.
+rooms="$(cd "$(dirname "$0")/../rooms" && pwd)"
+expect_compare_error() {  # expect_compare_error DESCRIPTION PATTERN ARGS...: the line must contain PATTERN
+  local what="$1" pattern="$2"; shift 2
+  rm -f "$tmp"/cmp.*
+  "$bin" compare "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/cmp.* >/dev/null 2>&1 ||
+     ! grep -qF -- "$pattern" "$tmp/stderr"; then
+    echo "FAIL: compare: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+fast=(--rays 1000 --fine-per-octave 2 --csv "$tmp/cmp.csv")
+expect_compare_error "missing scene file"   "cannot open" "$tmp/none.json" "${fast[@]}"
+printf '{"name": "broken", "sources": [\n' >"$tmp/broken.json"
+expect_compare_error "malformed scene"      "JSON syntax error" "$tmp/broken.json" "${fast[@]}"
+expect_compare_error "--models bogus"       'unknown model "bogus"' "$rooms/barrier.json" --models bogus "${fast[@]}"
+expect_compare_error "--models empty"       "give at least one" "$rooms/barrier.json" --models "" "${fast[@]}"
+expect_compare_error "--models ,"           'unknown model ""' "$rooms/barrier.json" --models , "${fast[@]}"
+# Two barriers: --aim needs exactly one occluder to aim at.
+python3 - "$rooms/barrier.json" "$tmp/two.json" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+second = dict(scene["occluders"][0], name="wall2", base=[[2, -20, 0], [2, 20, 0]])
+scene["occluders"].append(second)
+json.dump(scene, open(sys.argv[2], "w"))
+PY
+expect_compare_error "--aim with two occluders" "exactly one occluder" "$tmp/two.json" --aim "${fast[@]}"
+expect_compare_error "CSV into a missing folder"  "folder does not exist" "$rooms/barrier.json" --rays 1000 --csv "$tmp/no/such/dir/cmp.csv"
+expect_compare_error "plot into a missing folder" "folder does not exist" "$rooms/barrier.json" --rays 1000 --plot "$tmp/no/such/dir/cmp.png"
+expect_compare_error "zero rays"            "--rays" "$rooms/barrier.json" --rays 0 "${fast[@]}"
+expect_compare_error "--fine-per-octave 0"  "--fine-per-octave" "$rooms/barrier.json" --rays 1000 --fine-per-octave 0 --csv "$tmp/cmp.csv"
+# The good path: JSON lines with the documented keys, every model present, and a CSV with a header and the
+# same rows.
+"$bin" compare "$rooms/barrier.json" --aim --rays 20000 --fine-per-octave 2 --json --csv "$tmp/cmp.csv" \
+  >"$tmp/cmp.jsonl" 2>"$tmp/stderr"
+code=$?
+if [ "$code" -eq 0 ] && python3 - "$tmp/cmp.jsonl" "$tmp/cmp.csv" <<'PY'
+import csv, json, sys
+rows = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
+need = {"listener", "model", "freq_hz", "level_db_re_free_field"}
+assert rows and all(need <= set(r) for r in rows), "a JSON line misses a key"
+assert {r["model"] for r in rows} == {"wbsdf", "utd", "exact"}, {r["model"] for r in rows}
+assert len({r["listener"] for r in rows}) == 7, "barrier.json has 7 listeners"
+assert all(isinstance(r["freq_hz"], (int, float)) and r["freq_hz"] > 0 for r in rows)
+table = list(csv.reader(open(sys.argv[2])))
+assert table[0][:5] == ["listener", "model", "freq_hz", "band", "level_db_re_free_field"], table[0]
+assert len(table) == len(rows) + 1, (len(table), len(rows))
+PY
+then passes=$((passes + 1)); else
+  echo "FAIL: compare: good run (exit=$code) did not print the JSON lines and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 
