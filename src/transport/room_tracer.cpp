@@ -145,6 +145,7 @@ struct Tracer {
   double eps_m = 0.0;
   std::vector<double> air_table;     ///< [bin][band]: e^{−m_b·s_k}, s_k the path length at bin k's centre
   std::vector<double> air_centre_m;  ///< s_k
+  std::vector<int> floor_plane;      ///< per occluder: the mirror plane of a door's floor (sill), or −1
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
@@ -232,6 +233,8 @@ struct Tracer {
     int diffractions = 0;
     double e_start = 0.0;  ///< the level Russian roulette is relative to
     std::uint64_t skip_next_score = 0;  ///< listeners (bit l) whose next-segment score next-event estimation took
+    std::uint64_t skip_after_floor = 0;  ///< ... and whose score after a specular bounce off `floor_plane`
+    int floor_plane = -1;
     bool has_qmc = false;  ///< qmc[] holds the first occluder's quasi-random uniforms (shift x2, band)
     double qmc[3] = {0, 0, 0};
   };
@@ -272,10 +275,15 @@ struct Tracer {
   // hit point gets the expected score of the scattered ray's next segment, at its arrival time, with the
   // air absorption of the whole path. Returns the listeners it served (bit l; the first 64), whose score
   // of that segment the ray must then skip; the others score it as usual.
-  std::uint64_t nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in) const {
+  std::uint64_t nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
+                          std::uint64_t& floor_served) const {
     const int b = s.band;
     const double xi[2] = {rng.uniform(), rng.uniform()};  // a door's vertical shift (expectedSphereScore)
     std::uint64_t served = 0;
+    floor_served = 0;
+    if (floor_plane[k] >= 0)
+      for (std::size_t l = 0; l < spheres.size() && l < 64; ++l)
+        if (nextEventViaFloor(acc, s, k, n_in, l, xi)) floor_served |= std::uint64_t{1} << l;
     for (std::size_t l = 0; l < spheres.size() && l < 64; ++l) {
       const Vec3 q = spheres[l].centre - s.pos;
       const double L = q.norm();
@@ -302,10 +310,46 @@ struct Tracer {
     return served;
   }
 
+  // Next-event estimation through one specular bounce off a door's floor (the sill's mirror plane): the
+  // listener's image below the floor seen from the hit point, if that line meets the floor on a triangle of
+  // its plane and the reflected leg reaches the listener, times the floor's specular reflectance
+  // (1 − α)(1 − s). True when it served the listener (the ray then skips its score after such a bounce).
+  bool nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const Vec3& n_in, std::size_t l,
+                         const double* xi) const {
+    const MirrorPlane& fp = geometry.planes()[floor_plane[k]];
+    const receiver::Sphere& sp = spheres[l];
+    const double height = fp.normal.dot(sp.centre) - fp.offset;
+    const Vec3 image = sp.centre - 2.0 * height * fp.normal;
+    const Vec3 q = image - s.pos;
+    const double L = q.norm();
+    if (!(L > sp.radius_m)) return false;
+    const Vec3 qh = q / L;
+    const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
+    const SegmentHit h = cast(from, qh);
+    if (!h.valid() || geometry.triangle(h.triangle).plane != floor_plane[k]) return true;  // no floor there
+    const Vec3 r = from + h.t * qh, leg = sp.centre - r;
+    const double leg_len = leg.norm();
+    const Vec3 up = fp.normal.dot(leg) > 0.0 ? fp.normal : Vec3(-fp.normal);
+    const SegmentHit back = cast(r + eps_m * up, leg / leg_len);
+    if (back.valid() && back.t < leg_len - sp.radius_m) return true;  // the reflected leg is blocked
+    const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, image, sp.radius_m, xi);
+    if (std::isnan(v)) return false;
+    const room::Material& m = room.materials[geometry.triangle(h.triangle).material];
+    const double reflect = (1.0 - m.absorption[s.band]) * (1.0 - m.scattering[s.band]);
+    const double path = s.path_m + L;
+    const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
+    if (v != 0.0 && bin >= 0)
+      acc.listeners[l].add(s.band, bin, s.e[s.band] * v * reflect * std::exp(-opt.air_m_per_m[s.band] * path));
+    return true;
+  }
+
   // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
   bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
     ++acc.occluder_events;
-    if (opt.next_event && opt.occluders->nextEventSupported(k)) s.skip_next_score = nextEvent(acc, rng, s, k, n_in);
+    if (opt.next_event && opt.occluders->nextEventSupported(k)) {
+      s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
+      s.floor_plane = floor_plane[k];
+    }
     double xi[4];
     for (double& v : xi) v = rng.uniform();
     if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
@@ -375,6 +419,9 @@ struct Tracer {
       pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
       if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
+      const std::uint64_t after_floor = s.skip_after_floor;  // only the first bounce after an occluder
+      s.skip_after_floor = 0;
+      s.floor_plane = after_floor ? s.floor_plane : -1;
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (opt.occluders && s.diffractions < opt.max_diffractions) {
@@ -406,6 +453,7 @@ struct Tracer {
           const core::BandArray& w = materials.w_specular[m];
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
+          if (tri.plane == s.floor_plane) s.skip_next_score = after_floor;  // taken by nextEventViaFloor
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
@@ -446,7 +494,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}};
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
   for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
@@ -459,6 +507,21 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     for (int b = 0; b < tr.bands; ++b) tr.air_table.push_back(std::exp(-options.air_m_per_m[b] * s_k));
   }  // 15× the float rounding of a coordinate: no self-hits
 
+  // A door's floor (sill): the mirror plane through its bottom edge, perpendicular to it.
+  if (options.occluders)
+    for (int k = 0; k < options.occluders->size(); ++k) {
+      const room::Occluder& o = options.occluders->occluder(k);
+      int found = -1;
+      if (o.y.kind == room::OccluderAxis::Kind::Opening && o.y.mirror_lo) {
+        const Vec3 f = o.origin_m + o.y.lo_m * o.ey;
+        for (std::size_t p = 0; p < geometry.planes().size(); ++p) {
+          const MirrorPlane& mp = geometry.planes()[p];
+          if (std::abs(mp.normal.dot(o.ey)) > 1.0 - 1e-9 && std::abs(mp.normal.dot(f) - mp.offset) < tr.eps_m)
+            found = static_cast<int>(p);
+        }
+      }
+      tr.floor_plane.push_back(found);
+    }
   const Vec3 axis = src.directivity.axis.normalized();
 
   auto make = [&] {
