@@ -101,7 +101,7 @@ TEST(StatEdgeKernel, SlitFarFieldIsFraunhofer) {
   const int n = 400000;
   for (int i = 0; i < n; ++i) {
     const double x = (uni(rng) - 0.5) * a, d = 0.5 * a - std::abs(x);
-    const dw::EdgeKernelSample s = dw::edgeKernelSample(4.0 * d * u_max, uni(rng), uni(rng));
+    const dw::EdgeKernelSample s = dw::edgeKernelSample(-4.0 * d * u_max, 4.0 * d * u_max, uni(rng), uni(rng));
     const double u = s.w / (4.0 * d);
     const int k = static_cast<int>(std::floor((u - u_lo) / du));
     if (k < 0 || k >= nb) continue;

@@ -211,24 +211,16 @@ CaseInfo barrierCase() {
     spec.zone_m = p.at("zone")[0];
     spec.faces = facesOf(p);
     std::vector<double> deltas;
-    spec.listener_rho_m = 0;  // per listener below
-    room::Room room;
-    std::vector<core::Vec3> positions;
+    room::Room room = makeHalfPlaneScene(spec);  // no listeners yet: they are placed by height below
+    room.name = "barrier";
     for (double h : p.at("listener-heights")) {
-      positions.emplace_back(-h, -dl, 0.0);
+      const core::Vec3 at(-h, -dl, 0.0);
       const double phi = std::atan2(-dl, -h) + 2.0 * 3.14159265358979323846;
       deltas.push_back((phi - 3.14159265358979323846 - spec.source_phi_rad) / kDeg);
+      room.listeners.push_back({"R" + std::to_string(room.listeners.size() + 1), at, spec.radius_m});
     }
-    spec.listener_phi_rad.assign(1, 0.0);
-    spec.listener_rho_m = 1.0;
-    room = makeHalfPlaneScene(spec);
-    room.name = "barrier";
-    room.listeners.clear();
-    for (std::size_t i = 0; i < positions.size(); ++i)
-      room.listeners.push_back({"R" + std::to_string(i + 1), positions[i], spec.radius_m});
-    CaseResult r = runModels("barrier", room, deltas, edgeAim(room, o, kEdgeCaseRays, spec.radius_m), p);
-    // Insertion loss = −(level re free field); reported per row in the extras of the first band in range.
-    return r;
+    // The rows hold levels re free field: the insertion loss is their negative.
+    return runModels("barrier", room, deltas, edgeAim(room, o, kEdgeCaseRays, spec.radius_m), p);
   };
   return c;
 }

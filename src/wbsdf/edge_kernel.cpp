@@ -52,8 +52,6 @@ double tailSample(int m, double xi1, double xi2) {
 
 }  // namespace
 
-int edgeKernelPeriods(double w_max) { return periodsUpTo(w_max); }
-
 double edgeKernelEval(double w) {
   if (w == 0.0) return 1.0;
   const double x = core::kPi * w;
@@ -67,8 +65,6 @@ double edgeKernelPdf(double w, double w_lo, double w_hi) {
   if (w <= -1.0) return p.p_left * tailPdf(-w, p.m_left);
   return 0.0;
 }
-
-double edgeKernelPdf(double w, double w_max) { return edgeKernelPdf(w, -w_max, w_max); }
 
 EdgeKernelSample edgeKernelSample(double w_lo, double w_hi, double xi1, double xi2) {
   const Proposal p = proposal(w_lo, w_hi);
@@ -84,10 +80,6 @@ EdgeKernelSample edgeKernelSample(double w_lo, double w_hi, double xi1, double x
   const double pdf = edgeKernelPdf(s.w, w_lo, w_hi);
   s.weight = pdf > 0.0 ? edgeKernelEval(s.w) / pdf : 0.0;
   return s;
-}
-
-EdgeKernelSample edgeKernelSample(double w_max, double xi1, double xi2) {
-  return edgeKernelSample(-w_max, w_max, xi1, xi2);
 }
 
 }  // namespace diffray::wbsdf

@@ -34,10 +34,5 @@ double edgeKernelEval(double w);
 double edgeKernelPdf(double w, double w_lo, double w_hi);
 /// Samples w in the range from two uniforms in [0, 1).
 EdgeKernelSample edgeKernelSample(double w_lo, double w_hi, double xi1, double xi2);
-/// The symmetric range [−w_max, w_max].
-double edgeKernelPdf(double w, double w_max);
-EdgeKernelSample edgeKernelSample(double w_max, double xi1, double xi2);
-/// M = max(1, ⌈w_max⌉): the symmetric proposal covers |w| < M.
-int edgeKernelPeriods(double w_max);
 
 }  // namespace diffray::wbsdf
