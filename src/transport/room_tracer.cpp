@@ -405,7 +405,7 @@ struct Tracer {
       const double remaining = max_path_m - s.path_m;
       const double t_end = std::min(t_hit, remaining);
       score(acc, pos, dir, t_end, s.path_m, e, s.specular_chain && s.order <= opt.skip_order, s.skip_next_score);
-      s.skip_next_score = 0;
+      if (s.skip_next_score) s.skip_next_score = 0;
       if (opt.in_flight) addInFlight(acc, s.path_m, t_end, e);
       if (!hit.valid()) {
         ++acc.escaped;
@@ -419,9 +419,11 @@ struct Tracer {
       pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
       if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
-      const std::uint64_t after_floor = s.skip_after_floor;  // only the first bounce after an occluder
-      s.skip_after_floor = 0;
-      s.floor_plane = after_floor ? s.floor_plane : -1;
+      std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
+      if (s.skip_after_floor) {
+        after_floor = s.skip_after_floor;
+        s.skip_after_floor = 0;
+      }
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (opt.occluders && s.diffractions < opt.max_diffractions) {
@@ -453,7 +455,7 @@ struct Tracer {
           const core::BandArray& w = materials.w_specular[m];
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
-          if (tri.plane == s.floor_plane) s.skip_next_score = after_floor;  // taken by nextEventViaFloor
+          if (after_floor && tri.plane == s.floor_plane) s.skip_next_score = after_floor;  // nextEventViaFloor
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
