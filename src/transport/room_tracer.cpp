@@ -370,10 +370,15 @@ struct Tracer {
     return true;
   }
 
+  // Follows a path until it ends. The hot state lives in locals (not in the Path, which the occluder code
+  // takes by reference and would make every store in the loop a possible alias): 5 % of the room bench.
   void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
-    Vec3& pos = s.pos;
-    Vec3& dir = s.dir;
-    core::BandArray& e = s.e;
+    Vec3 pos = s.pos, dir = s.dir;
+    core::BandArray e = s.e;
+    double path_m = s.path_m;
+    int order = s.order;
+    bool specular_chain = s.specular_chain;
+    std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
       // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
@@ -402,11 +407,11 @@ struct Tracer {
           if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
         }
       }
-      const double remaining = max_path_m - s.path_m;
+      const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
-      score(acc, pos, dir, t_end, s.path_m, e, s.specular_chain && s.order <= opt.skip_order, s.skip_next_score);
-      if (s.skip_next_score) s.skip_next_score = 0;
-      if (opt.in_flight) addInFlight(acc, s.path_m, t_end, e);
+      score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
+      skip_next = 0;
+      if (opt.in_flight) addInFlight(acc, path_m, t_end, e);
       if (!hit.valid()) {
         ++acc.escaped;
         return;
@@ -415,22 +420,26 @@ struct Tracer {
         ++acc.timed_out;
         return;
       }
-      s.path_m += t_hit;
+      path_m += t_hit;
       pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
       if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
       std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
-      if (s.skip_after_floor) {
-        after_floor = s.skip_after_floor;
-        s.skip_after_floor = 0;
+      if (skip_after_floor) {
+        after_floor = skip_after_floor;
+        skip_after_floor = 0;
       }
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
       if (opt.occluders && s.diffractions < opt.max_diffractions) {
         if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
+          // The cold path: the occluder code works on the Path.
+          s.pos = pos, s.dir = dir, s.e = e, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
           if (s.band < 0) chooseBand(rng, s);
           if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-          if (!roulette(acc, rng, s)) return;
+          if (!roulette(acc, rng, s.e, s.e_start)) return;
+          pos = s.pos, dir = s.dir, e = s.e, order = s.order, specular_chain = s.specular_chain;
+          skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
           continue;
         }
       }
@@ -441,7 +450,7 @@ struct Tracer {
       // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
       // per-band weights (MaterialTable).
       if (materials.absorbing[m]) return;
-      ++s.order;
+      ++order;
       const double p_reflect = materials.p_reflect[m];
       if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
         const double p_diffuse = materials.p_diffuse[m];
@@ -450,21 +459,21 @@ struct Tracer {
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
-          s.specular_chain = false;
+          specular_chain = false;
         } else {
           const core::BandArray& w = materials.w_specular[m];
           for (int b = 0; b < bands; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
-          if (after_floor && tri.plane == s.floor_plane) s.skip_next_score = after_floor;  // nextEventViaFloor
+          if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
         const core::BandArray& w = materials.w_transmit[m];
         for (int b = 0; b < bands; ++b) e[b] *= w[b];
-        s.specular_chain = false;
+        specular_chain = false;
         pos -= eps_m * n_in;
       }
-      if (!roulette(acc, rng, s)) return;
+      if (!roulette(acc, rng, e, s.e_start)) return;
     }
   }
 
@@ -472,17 +481,17 @@ struct Tracer {
   // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
   // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
   // level, so rays live a little longer at high frequencies, and no exp per bounce.
-  bool roulette(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+  bool roulette(RoomTraceResult& acc, core::FastRng& rng, core::BandArray& e, double e_start) const {
     double level = 0.0;
-    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(s.e[b]));
-    const double threshold = opt.roulette_level * s.e_start;
+    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
+    const double threshold = opt.roulette_level * e_start;
     if (level >= threshold) return true;
     const double q = level / threshold;
     if (!(rng.uniform() < q)) {
       ++acc.roulette_killed;
       return false;
     }
-    for (int b = 0; b < bands; ++b) s.e[b] /= q;
+    for (int b = 0; b < bands; ++b) e[b] /= q;
     return true;
   }
 };
