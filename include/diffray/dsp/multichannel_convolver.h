@@ -1,0 +1,46 @@
+#pragma once
+// MultichannelConvolver: interleaved multichannel convolution built from one PartitionedConvolver per
+// output channel (same contract: init / process / reset, zero latency, nothing allocated in process()).
+// How an M-channel impulse response meets a C-channel input (outputChannels()):
+//  * M = 1: the one IR is applied to every input channel (C outputs);
+//  * M = C: channel-wise, IR channel c on input channel c (C outputs; stereo IR on stereo input);
+//  * C = 1: the mono input through every IR channel (M outputs; e.g. a binaural or B-format IR);
+//  * any other pairing is refused (core::InputError).
+// Thread-safety: one object is used by one thread at a time.
+#include <memory>
+#include <vector>
+
+#include "diffray/dsp/partitioned_convolver.h"
+
+namespace diffray::dsp {
+
+class MultichannelConvolver {
+ public:
+  /// Output channel count for an `ir_channels`-channel IR on an `input_channels`-channel input; throws
+  /// core::InputError for a pairing the rules above do not cover.
+  static int outputChannels(int ir_channels, int input_channels);
+
+  /// `ir[m]` is IR channel m (all the same length ≥ 1). Blocks of `block_size` frames (see
+  /// PartitionedConvolver). Throws core::InputError for an unsupported pairing or a bad IR.
+  void init(int block_size, const std::vector<std::vector<float>>& ir, int input_channels);
+
+  /// Convolves `frames` interleaved input frames (inputChannels() samples each) into `frames` interleaved
+  /// output frames (outputChannels() samples each). `in` and `out` must not overlap. Allocation-free.
+  void process(const float* in, float* out, long frames);
+
+  void reset();
+
+  int inputChannels() const { return input_channels_; }
+  int outputChannels() const { return static_cast<int>(convolvers_.size()); }
+  long irLength() const { return convolvers_.empty() ? 0 : convolvers_.front()->irLength(); }
+
+ private:
+  int input_channels_ = 0;
+  int block_ = 0;
+  std::vector<std::unique_ptr<PartitionedConvolver>> convolvers_;  ///< one per output channel
+  std::vector<int> source_;               ///< input channel feeding output channel o
+  std::vector<float> scratch_in_;         ///< one block of one channel, de-interleaved
+  std::vector<float> scratch_out_;
+};
+
+}  // namespace diffray::dsp

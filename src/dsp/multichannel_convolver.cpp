@@ -1,0 +1,57 @@
+#include "diffray/dsp/multichannel_convolver.h"
+
+#include <algorithm>
+#include <string>
+
+#include "diffray/core/error.h"
+
+namespace diffray::dsp {
+
+int MultichannelConvolver::outputChannels(int ir_channels, int input_channels) {
+  if (ir_channels < 1 || input_channels < 1)
+    throw core::InputError("convolver", "the impulse response and the input need at least one channel each");
+  if (ir_channels == 1 || ir_channels == input_channels) return input_channels;
+  if (input_channels == 1) return ir_channels;
+  throw core::InputError("convolver", "cannot pair a " + std::to_string(ir_channels) + "-channel impulse response with a " +
+                                          std::to_string(input_channels) +
+                                          "-channel input (a mono IR, a mono input, or equal channel counts)");
+}
+
+void MultichannelConvolver::init(int block_size, const std::vector<std::vector<float>>& ir, int input_channels) {
+  const int ir_channels = static_cast<int>(ir.size());
+  const int outputs = outputChannels(ir_channels, input_channels);
+  for (const auto& channel : ir)
+    if (channel.size() != ir.front().size())
+      throw core::InputError("convolver", "the impulse response's channels differ in length");
+  convolvers_.clear();
+  source_.clear();
+  for (int o = 0; o < outputs; ++o) {
+    convolvers_.push_back(std::make_unique<PartitionedConvolver>());
+    convolvers_.back()->init(block_size, ir[static_cast<size_t>(ir_channels == 1 ? 0 : o)]);
+    source_.push_back(input_channels == 1 ? 0 : o);
+  }
+  input_channels_ = input_channels;
+  block_ = block_size;
+  scratch_in_.assign(static_cast<size_t>(block_size), 0.0f);
+  scratch_out_.assign(static_cast<size_t>(block_size), 0.0f);
+}
+
+void MultichannelConvolver::process(const float* in, float* out, long frames) {
+  const auto cin = static_cast<long>(input_channels_);
+  const auto cout = static_cast<long>(convolvers_.size());
+  for (long start = 0; start < frames; start += block_) {
+    const long count = std::min<long>(block_, frames - start);
+    for (long o = 0; o < cout; ++o) {
+      const long c = source_[static_cast<size_t>(o)];
+      for (long f = 0; f < count; ++f) scratch_in_[static_cast<size_t>(f)] = in[(start + f) * cin + c];
+      convolvers_[static_cast<size_t>(o)]->process(scratch_in_.data(), scratch_out_.data(), count);
+      for (long f = 0; f < count; ++f) out[(start + f) * cout + o] = scratch_out_[static_cast<size_t>(f)];
+    }
+  }
+}
+
+void MultichannelConvolver::reset() {
+  for (auto& c : convolvers_) c->reset();
+}
+
+}  // namespace diffray::dsp
