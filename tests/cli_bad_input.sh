@@ -201,6 +201,51 @@ PY
 then passes=$((passes + 1)); else
   echo "FAIL: compare: good run (exit=$code) did not print the JSON lines and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# diffray auralize: bad input gives one line and leaves no WAV (nor a temporary) behind.
+expect_auralize_error() {  # expect_auralize_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  rm -f "$tmp"/wet.*
+  "$bin" auralize "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/wet.* >/dev/null 2>&1; then
+    echo "FAIL: auralize: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+# ok.wav at 44.1 kHz: the same two samples, another rate.
+printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x44\xac\x00\x00\x10\xb1\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok44.wav"
+expect_auralize_error "missing IR file"        --ir "$tmp/none.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
+expect_auralize_error "missing input file"     --ir "$tmp/ok.wav" --in "$tmp/none.wav" -o "$tmp/wet.wav"
+expect_auralize_error "sample-rate mismatch"   --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav"
+expect_auralize_error "NaN in the input"       --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav"
+expect_auralize_error "NaN in the input, normalized" --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav" --normalize
+expect_auralize_error "NaN in the IR"          --ir "$tmp/nan.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
+expect_auralize_error "output folder missing"  --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/no/such/dir/wet.wav"
+expect_auralize_error "output not a .wav"      --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.csv"
+expect_auralize_error "NaN gain"               --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain nan
+expect_auralize_error "no --in"                --ir "$tmp/ok.wav" -o "$tmp/wet.wav"
+cp "$tmp/ok.wav" "$tmp/dry.wav"
+"$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/dry.wav" -o "$tmp/dry.wav" >/dev/null 2>"$tmp/stderr"
+code=$?
+if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && cmp -s "$tmp/ok.wav" "$tmp/dry.wav"; then
+  passes=$((passes + 1)); else echo "FAIL: auralize: the output may not overwrite the input (exit=$code)"; fails=$((fails + 1)); fi
+# The good path: [1, 0.5] * [1, 0.5] = [1, 1, 0.25], three frames, no temporary left.
+if "$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --normalize >/dev/null 2>"$tmp/stderr" &&
+   python3 - "$tmp/wet.wav" <<'PY' && [ "$(ls "$tmp"/wet.* | wc -l)" -eq 1 ]; then passes=$((passes + 1)); else
+import struct, sys
+b = open(sys.argv[1], "rb").read()
+i = b.index(b"data")
+n = struct.unpack("<I", b[i + 4:i + 8])[0]
+y = struct.unpack("<%df" % (n // 4), b[i + 8:i + 8 + n])
+p = 10 ** (-1 / 20)  # --normalize: peak at -1 dBFS
+assert len(y) == 3 and all(abs(a - e) < 1e-6 for a, e in zip(y, (p, p, p / 4))), y
+PY
+  echo "FAIL: auralize: good run did not write [1, 1, 0.25] normalized"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

@@ -1,10 +1,12 @@
 #include "diffray/audio/wav.h"
 
 #include <sndfile.h>
+#include <unistd.h>
 
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
 #include <memory>
 #include <sstream>
 
@@ -135,6 +137,85 @@ void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
   core::writeFileAtomically(path, [&memory](std::ostream& out) {
     out.write(memory.bytes.data(), static_cast<std::streamsize>(memory.bytes.size()));
   });
+}
+
+AudioReader::AudioReader(const std::string& path) : path_(path) {
+  SF_INFO info;
+  std::memset(&info, 0, sizeof(info));
+  SNDFILE* file = sf_open(path.c_str(), SFM_READ, &info);
+  if (file == nullptr) throw core::InputError(path, std::string("cannot read audio: ") + sf_strerror(nullptr));
+  if (info.frames <= 0 || info.channels <= 0 || info.samplerate <= 0) {
+    sf_close(file);  // the destructor does not run when the constructor throws
+    throw core::InputError(path, info.frames <= 0 ? "the audio file holds no frames"
+                                                  : "the audio file has no channels or no sample rate");
+  }
+  file_ = file;
+  sample_rate_hz_ = info.samplerate;
+  channels_ = info.channels;
+  frames_ = static_cast<long>(info.frames);
+}
+
+AudioReader::~AudioReader() {
+  if (file_ != nullptr) sf_close(static_cast<SNDFILE*>(file_));
+}
+
+long AudioReader::read(float* out, long frames) {
+  auto* file = static_cast<SNDFILE*>(file_);
+  const sf_count_t got = sf_readf_float(file, out, static_cast<sf_count_t>(frames));
+  if (sf_error(file) != SF_ERR_NO_ERROR)
+    throw core::InputError(path_, std::string("cannot read audio: ") + sf_strerror(file));
+  const long samples = static_cast<long>(got) * channels_;
+  for (long i = 0; i < samples; ++i)
+    if (!std::isfinite(out[i]))
+      throw core::InputError(path_, "sample at " + sampleWhere(position_ * channels_ + i, channels_) + " is " +
+                                        (std::isnan(out[i]) ? "NaN" : "infinite"));
+  position_ += static_cast<long>(got);
+  return static_cast<long>(got);
+}
+
+WavWriter::WavWriter(const std::string& path, int sample_rate_hz, int channels)
+    : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), channels_(channels) {
+  SF_INFO info;
+  std::memset(&info, 0, sizeof(info));
+  info.samplerate = sample_rate_hz;
+  info.channels = channels;
+  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  if (channels < 1 || channels > 1024 || sample_rate_hz < 1 || !sf_format_check(&info))
+    throw core::InputError(path, "libsndfile refuses a float WAV of " + std::to_string(channels) + " channels at " +
+                                     std::to_string(sample_rate_hz) + " Hz");
+  SNDFILE* file = sf_open(tmp_.c_str(), SFM_WRITE, &info);
+  if (file == nullptr) throw core::InputError(path, std::string("cannot open for writing: ") + sf_strerror(nullptr));
+  file_ = file;
+  // No PEAK chunk: it carries the wall-clock time, and identical runs must write identical bytes.
+  sf_command(file, SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
+}
+
+WavWriter::~WavWriter() {
+  if (file_ == nullptr) return;  // committed
+  sf_close(static_cast<SNDFILE*>(file_));
+  std::remove(tmp_.c_str());
+}
+
+void WavWriter::write(const float* samples, long frames) {
+  const long count = frames * channels_;
+  for (long i = 0; i < count; ++i)
+    if (!std::isfinite(samples[i]))
+      throw core::InputError(path_, "refusing to write sample at " + sampleWhere(written_ * channels_ + i, channels_) +
+                                        ": " + (std::isnan(samples[i]) ? "NaN" : "infinite"));
+  auto* file = static_cast<SNDFILE*>(file_);
+  if (sf_writef_float(file, samples, static_cast<sf_count_t>(frames)) != static_cast<sf_count_t>(frames))
+    throw core::InputError(path_, std::string("write failed: ") + sf_strerror(file));
+  written_ += frames;
+}
+
+void WavWriter::commit() {
+  DIFFRAY_CHECK(file_ != nullptr);
+  const int closed = sf_close(static_cast<SNDFILE*>(file_));  // writes the final header sizes
+  file_ = nullptr;
+  if (closed != 0 || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    std::remove(tmp_.c_str());
+    throw core::InputError(path_, "cannot finish writing (close or rename failed)");
+  }
 }
 
 }  // namespace diffray::audio

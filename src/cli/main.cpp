@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner wdf = diffray::cli::addWdfCommand(app, common);
   diffray::cli::Runner metrics = diffray::cli::addMetricsCommand(app, common);
   diffray::cli::Runner compare = diffray::cli::addCompareCommand(app, common);
+  diffray::cli::Runner auralize = diffray::cli::addAuralizeCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("wdf")) return wdf();
     if (app.got_subcommand("metrics")) return metrics();
     if (app.got_subcommand("compare")) return compare();
+    if (app.got_subcommand("auralize")) return auralize();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

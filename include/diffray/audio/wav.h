@@ -5,6 +5,10 @@
 // reads (WAV, AIFF, FLAC, …; integer formats are scaled to [−1, 1) as libsndfile does). Writing produces
 // 32-bit float WAV, atomically (core::writeFileAtomically): a failed write leaves no file and leaves an
 // existing file untouched. Plain data and free functions; calls on different files may run concurrently.
+// AudioReader and WavWriter stream a file in blocks (memory independent of its length): the writer fills a
+// temporary file beside the target and renames it over the target in commit(); destroyed uncommitted (an
+// error on the way), it removes the temporary, so no half-written file is ever left. Each object is used
+// by one thread at a time.
 #include <string>
 #include <vector>
 
@@ -28,5 +32,57 @@ AudioBuffer readAudio(const std::string& path);
 /// samples or samples beyond the float range (checked before anything is written), for a sample rate or
 /// channel count libsndfile refuses, and when the file cannot be written.
 void writeWavFloat(const std::string& path, const AudioBuffer& audio);
+
+/// Reads an audio file (anything libsndfile reads) block by block, as float in [−1, 1) for integer formats.
+class AudioReader {
+ public:
+  /// Opens `path`. Throws core::InputError naming `path` for a missing or unreadable file, an unknown
+  /// format, or a file with no frames.
+  explicit AudioReader(const std::string& path);
+  ~AudioReader();
+  AudioReader(const AudioReader&) = delete;
+  AudioReader& operator=(const AudioReader&) = delete;
+
+  double sampleRateHz() const { return sample_rate_hz_; }
+  int channels() const { return channels_; }
+  long frames() const { return frames_; }  ///< as the header says
+  /// Reads up to `frames` interleaved frames into `out` (room for frames·channels() floats); returns the
+  /// number read, 0 at the end. Throws core::InputError naming the file for a read error or a NaN/Inf
+  /// sample (the frame and channel named).
+  long read(float* out, long frames);
+
+ private:
+  std::string path_;
+  void* file_ = nullptr;  ///< SNDFILE*
+  double sample_rate_hz_ = 0.0;
+  int channels_ = 0;
+  long frames_ = 0;
+  long position_ = 0;  ///< frames read so far
+};
+
+/// Writes a 32-bit float WAV block by block into a temporary file beside `path`, renamed to `path` by
+/// commit(). Without commit() (an exception on the way) the temporary is removed in the destructor.
+class WavWriter {
+ public:
+  /// Throws core::InputError naming `path` for a layout libsndfile refuses or a file it cannot create.
+  WavWriter(const std::string& path, int sample_rate_hz, int channels);
+  ~WavWriter();
+  WavWriter(const WavWriter&) = delete;
+  WavWriter& operator=(const WavWriter&) = delete;
+
+  /// Appends `frames` interleaved frames. Throws core::InputError naming `path` for a NaN/Inf sample (the
+  /// frame named) or a failed write.
+  void write(const float* samples, long frames);
+  /// Closes the file (final header sizes) and renames it to `path`. Throws core::InputError on failure.
+  void commit();
+  long framesWritten() const { return written_; }
+
+ private:
+  std::string path_;
+  std::string tmp_;
+  void* file_ = nullptr;  ///< SNDFILE*
+  int channels_ = 0;
+  long written_ = 0;
+};
 
 }  // namespace diffray::audio

@@ -24,5 +24,6 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common);
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
 Runner addIrCommand(CLI::App& app, CommonOptions& common);
 Runner addCompareCommand(CLI::App& app, CommonOptions& common);
+Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli
