@@ -8,7 +8,7 @@
 #include <string>
 
 #include "diffray/core/error.h"
-#include "diffray/wbsdf/wigner_fft.h"
+#include "diffray/core/fftw_planner.h"
 
 namespace diffray::dsp {
 
@@ -36,7 +36,7 @@ PartitionedConvolver::~PartitionedConvolver() { release(); }
 
 void PartitionedConvolver::release() {
   if (fft_real_ == nullptr) return;
-  std::lock_guard<std::mutex> lock(wbsdf::fftwPlannerMutex());
+  std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
   fftw_destroy_plan(static_cast<fftw_plan>(forward_plan_));
   fftw_destroy_plan(static_cast<fftw_plan>(inverse_plan_));
   fftw_free(fft_real_);
@@ -72,7 +72,7 @@ void PartitionedConvolver::init(int block_size, const float* ir, long ir_length)
   fft_complex_ = spectrum;
   DIFFRAY_CHECK(fft_real_ != nullptr && spectrum != nullptr);
   {
-    std::lock_guard<std::mutex> lock(wbsdf::fftwPlannerMutex());
+    std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
     // FFTW_ESTIMATE leaves the buffers alone while planning; the plans are reused for every execute.
     forward_plan_ = fftw_plan_dft_r2c_1d(n, fft_real_, spectrum, FFTW_ESTIMATE);
     inverse_plan_ = fftw_plan_dft_c2r_1d(n, spectrum, fft_real_, FFTW_ESTIMATE);

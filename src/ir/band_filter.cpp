@@ -7,8 +7,8 @@
 #include <mutex>
 
 #include "diffray/core/error.h"
+#include "diffray/core/fftw_planner.h"
 #include "diffray/core/math.h"
-#include "diffray/wbsdf/wigner_fft.h"
 
 namespace diffray::ir {
 
@@ -32,7 +32,7 @@ RealFft::RealFft(int n) : n_(n) {
   auto* spectrum = fftw_alloc_complex(static_cast<size_t>(n / 2 + 1));
   complex_ = spectrum;
   DIFFRAY_CHECK(real_ != nullptr && spectrum != nullptr);
-  std::lock_guard<std::mutex> lock(wbsdf::fftwPlannerMutex());
+  std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
   // FFTW_ESTIMATE leaves the buffers alone while planning; the plans are reused for every execute.
   forward_plan_ = fftw_plan_dft_r2c_1d(n, real_, spectrum, FFTW_ESTIMATE);
   inverse_plan_ = fftw_plan_dft_c2r_1d(n, spectrum, real_, FFTW_ESTIMATE);
@@ -40,7 +40,7 @@ RealFft::RealFft(int n) : n_(n) {
 }
 
 RealFft::~RealFft() {
-  std::lock_guard<std::mutex> lock(wbsdf::fftwPlannerMutex());
+  std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
   fftw_destroy_plan(static_cast<fftw_plan>(forward_plan_));
   fftw_destroy_plan(static_cast<fftw_plan>(inverse_plan_));
   fftw_free(real_);

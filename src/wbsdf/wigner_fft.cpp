@@ -8,6 +8,7 @@
 #include <string>
 
 #include "diffray/core/error.h"
+#include "diffray/core/fftw_planner.h"
 
 namespace diffray::wbsdf {
 
@@ -19,20 +20,20 @@ constexpr double kMaxGridValues = 1u << 27;  // 1 GiB of doubles
 constexpr double kMaxSamples = 1u << 26;
 
 /// An in-place FFTW forward plan of length n on its own buffer. Planning and destruction hold
-/// fftwPlannerMutex(); execute() on distinct objects may run concurrently (FFTW guarantees it).
+/// core::fftwPlannerMutex(); execute() on distinct objects may run concurrently (FFTW guarantees it).
 class FftwForwardPlan {
  public:
   explicit FftwForwardPlan(int n) : n_(n) {
     buffer_ = static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * static_cast<size_t>(n)));
     DIFFRAY_CHECK(buffer_ != nullptr);
-    std::lock_guard<std::mutex> lock(fftwPlannerMutex());
+    std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
     // FFTW_ESTIMATE does not touch the buffer while planning.
     plan_ = fftw_plan_dft_1d(n, buffer_, buffer_, FFTW_FORWARD, FFTW_ESTIMATE);
     if (plan_ == nullptr) fftw_free(buffer_);
     DIFFRAY_CHECK(plan_ != nullptr);
   }
   ~FftwForwardPlan() {
-    std::lock_guard<std::mutex> lock(fftwPlannerMutex());
+    std::lock_guard<std::mutex> lock(core::fftwPlannerMutex());
     fftw_destroy_plan(plan_);
     fftw_free(buffer_);
   }
@@ -72,11 +73,6 @@ void validateProfile(const SampledProfile& profile, int nu) {
 }
 
 }  // namespace
-
-std::mutex& fftwPlannerMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 double WignerGrid::at(int j, int k) const {
   DIFFRAY_CHECK(j >= 0 && j < nx && k >= 0 && k < nu);

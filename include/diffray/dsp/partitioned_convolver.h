@@ -11,7 +11,7 @@
 //    the block size when latency does not matter).
 //  * Precision: samples in and out are float; FFTs and accumulation are in double.
 //  * Real-time: process() and reset() allocate nothing, lock nothing and do no I/O; init() allocates and
-//    creates FFTW plans (under wbsdf::fftwPlannerMutex(), since FFTW planning is not thread-safe).
+//    creates FFTW plans (under core::fftwPlannerMutex(), since FFTW planning is not thread-safe).
 // Thread-safety: one object is used by one thread at a time; distinct objects may run concurrently.
 #include <complex>
 #include <vector>

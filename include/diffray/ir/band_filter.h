@@ -16,7 +16,7 @@
 // spectra on a zero-padded FFT whose length keeps the filters' circular wrap-around negligible
 // (fftLengthFor); outputs have the input's length.
 // Thread-safety: a BandFilter is immutable and may be shared; RealFft objects are one per thread. FFTW plan
-// creation and destruction hold wbsdf::fftwPlannerMutex().
+// creation and destruction hold core::fftwPlannerMutex().
 #include <complex>
 #include <vector>
 

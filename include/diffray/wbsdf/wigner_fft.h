@@ -17,11 +17,9 @@
 //    nu ≥ 2·(number of samples) gives the full (untruncated) pseudo-Wigner; smaller nu smooths W in u.
 //  * Marginals: Σ_k W(x_j,u_k)·du = |t(x_j)|² exactly; Σ_j Σ_k W·dx·du = Σ_j |t_j|²·dx exactly.
 // Thread-safety: wignerFFT and sampleProfile may be called concurrently; FFTW plan creation and
-// destruction (not thread-safe in FFTW) are serialised through fftwPlannerMutex(), which every module
-// that creates or destroys FFTW plans should hold while doing so.
+// destruction (not thread-safe in FFTW) are serialised through core::fftwPlannerMutex() (core/fftw_planner.h).
 #include <complex>
 #include <functional>
-#include <mutex>
 #include <vector>
 
 namespace diffray::wbsdf {
@@ -60,8 +58,5 @@ SampledProfile sampleProfile(const std::function<std::complex<double>(double)>& 
 /// In-place forward DFT with FFTW (FFTW_ESTIMATE): data[k] ← Σ_n data[n]·e^{−2πi·k·n/N}, N = data.size().
 /// Thread-safe (the planner is serialised). Throws core::InputError if data is empty.
 void forwardFFT(std::vector<std::complex<double>>& data);
-
-/// The process-wide mutex that guards FFTW's planner (fftw_plan_* and fftw_destroy_plan).
-std::mutex& fftwPlannerMutex();
 
 }  // namespace diffray::wbsdf
