@@ -87,13 +87,8 @@ TEST(StatOccluderNextEvent, TracesWithAndWithoutAgree) {
   const dr::Room room = edgeScene(dr::OccluderAxis::Faces::Rigid);
   diffray::compare::WbsdfRunOptions w;
   w.rays = 300000;
-  w.aim = true;
-  const dr::Occluder& z = room.occluders[0];
-  w.aim_origin = z.origin_m;
-  w.aim_ex = z.ex;
-  w.aim_ey = z.ey;
-  w.aim_half_x_m = z.half_x_m;
-  w.aim_half_y_m = 0.3;
+  diffray::compare::aimAtOccluder(w, room.occluders[0]);
+  w.aim_half_y_m = 0.3;  // the listeners' height band along the edge
   const auto with = diffray::compare::wbsdfLevels(room, 0, w);
   w.next_event = false;
   w.rays = 1200000;
@@ -113,13 +108,7 @@ TEST(StatOccluderNextEvent, DoorOnAFloorWithAndWithoutAgree) {
   spec.radius_m = 0.3;
   const dr::Room room = dv::makeDoorScene(spec);
   diffray::compare::WbsdfRunOptions w;
-  const dr::Occluder& d = room.occluders[0];
-  w.aim = true;  // the door and its image in the floor
-  w.aim_origin = d.origin_m - d.half_y_m * d.ey;
-  w.aim_ex = d.ex;
-  w.aim_ey = d.ey;
-  w.aim_half_x_m = d.half_x_m;
-  w.aim_half_y_m = 2.0 * d.half_y_m;
+  diffray::compare::aimAtOccluder(w, room.occluders[0]);  // the door and its image in the floor
   w.rays = 200000;
   const auto with = diffray::compare::wbsdfLevels(room, 0, w);
   w.next_event = false;

@@ -100,13 +100,7 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
     if (o.aim) {
       if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
       const room::Occluder& d = room.occluders[0];
-      const bool doubled = d.y.kind == Kind::Opening && d.y.mirror_lo;  // the door and its floor image
-      w.aim = true;
-      w.aim_origin = doubled ? d.origin_m - d.half_y_m * d.ey : d.origin_m;
-      w.aim_ex = d.ex;
-      w.aim_ey = d.ey;
-      w.aim_half_x_m = d.half_x_m;
-      w.aim_half_y_m = doubled ? 2.0 * d.half_y_m : d.half_y_m;
+      aimAtOccluder(w, d);
       if (d.y.kind == Kind::Uniform) {
         // Along an edge the ray keeps its cosine: a path from the source to a listener crosses the zone at an
         // edge coordinate between theirs (widened by the listener's radius). Aim only there.

@@ -15,6 +15,16 @@ double levelDb(double ratio) {
   return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity();
 }
 
+void aimAtOccluder(WbsdfRunOptions& w, const room::Occluder& o) {
+  const bool doubled = o.y.kind == room::OccluderAxis::Kind::Opening && o.y.mirror_lo;
+  w.aim = true;
+  w.aim_origin = doubled ? o.origin_m - o.half_y_m * o.ey : o.origin_m;
+  w.aim_ex = o.ex;
+  w.aim_ey = o.ey;
+  w.aim_half_x_m = o.half_x_m;
+  w.aim_half_y_m = doubled ? 2.0 * o.half_y_m : o.half_y_m;
+}
+
 WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOptions& options) {
   if (source < 0 || source >= static_cast<int>(room.sources.size())) throw core::InternalError("wbsdfLevels: no such source");
   const transport::RoomGeometry geometry(room);

@@ -145,19 +145,23 @@ room::OccluderAxis::Faces facesOf(const Params& p) {
 
 // Rays aimed at the edge zone, within the heights that can reach a listener sphere (all at z = 0 with the
 // source): a ray crossing the zone at height z reaches the listener's distance at a height ≥ |z|.
-compare::WbsdfRunOptions edgeAim(const room::Room& room, const RunOptions& o, std::uint64_t default_rays, double radius) {
+// The run options every case shares: rays (the case's default unless given), seed, progress, and every ray
+// aimed at the scene's occluder (compare::aimAtOccluder), arrivals up to 1 s.
+compare::WbsdfRunOptions aimedRun(const room::Room& room, const RunOptions& o, std::uint64_t default_rays) {
   compare::WbsdfRunOptions w;
   w.rays = o.rays ? o.rays : default_rays;
   w.seed = o.seed;
   w.on_progress = o.on_progress;
-  const room::Occluder& z = room.occluders[0];
-  w.aim = true;
-  w.aim_origin = z.origin_m;
-  w.aim_ex = z.ex;
-  w.aim_ey = z.ey;
-  w.aim_half_x_m = z.half_x_m;
-  w.aim_half_y_m = radius;
+  compare::aimAtOccluder(w, room.occluders[0]);
   w.length_s = 1.0;
+  return w;
+}
+
+// Rays aimed at the edge zone, within the heights that can reach a listener sphere (all at z = 0 with the
+// source): a ray crossing the zone at height z reaches the listener's distance at a height ≥ |z|.
+compare::WbsdfRunOptions edgeAim(const room::Room& room, const RunOptions& o, std::uint64_t default_rays, double radius) {
+  compare::WbsdfRunOptions w = aimedRun(room, o, default_rays);
+  w.aim_half_y_m = radius;
   return w;
 }
 
@@ -256,20 +260,8 @@ CaseInfo doorRoomCase() {
     }
     for (const auto& l : spec.listeners_m) deltas.push_back(doorShadowAngleDeg(spec, l));
     const room::Room room = makeDoorScene(spec);
-    compare::WbsdfRunOptions w;
-    w.rays = o.rays ? o.rays : kDoorCaseRays;
-    w.seed = o.seed;
-    w.on_progress = o.on_progress;
-    // Aim at the door and its mirror image in the floor: rays toward the mirror half reflect off the floor
-    // in front of the door and go through it (the image source's paths).
-    const room::Occluder& d = room.occluders[0];
-    w.aim = true;
-    w.aim_origin = spec.floor ? d.origin_m - d.half_y_m * d.ey : d.origin_m;
-    w.aim_ex = d.ex;
-    w.aim_ey = d.ey;
-    w.aim_half_x_m = d.half_x_m;
-    w.aim_half_y_m = spec.floor ? 2.0 * d.half_y_m : d.half_y_m;
-    w.length_s = 1.0;
+    // Aimed at the door and, on a floor, its mirror image (the image source's paths).
+    const compare::WbsdfRunOptions w = aimedRun(room, o, kDoorCaseRays);
     return runModels("door-room", room, deltas, w, p);
   };
   return c;

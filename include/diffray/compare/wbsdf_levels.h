@@ -42,6 +42,11 @@ struct WbsdfLevels {
 /// Traces source `source` of `room` (with its occluders) and returns the level at every listener per band.
 WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOptions& options);
 
+/// Aims every ray of `w` at occluder `o`'s rectangle, or, for a door on a floor (sill), at the door and its
+/// mirror image below the floor: rays toward the image half reflect off the floor in front of the door and
+/// go through it (the image source's paths).
+void aimAtOccluder(WbsdfRunOptions& w, const room::Occluder& o);
+
 /// 10·log10(ratio), −inf when ratio ≤ 0.
 double levelDb(double ratio);
 
