@@ -22,12 +22,6 @@ int openingMaterial(Room& room) {
   return room.addMaterial(open);
 }
 
-// Vertices of the occluder's rectangle, in order.
-std::vector<Vec3> rectCorners(const Occluder& o) {
-  const Vec3 hx = o.half_x_m * o.ex, hy = o.half_y_m * o.ey;
-  return {o.origin_m - hx - hy, o.origin_m + hx - hy, o.origin_m + hx + hy, o.origin_m - hx + hy};
-}
-
 Vec3 unitVector(const JsonField& f) {
   const Vec3 v = f.vec3();
   if (!(v.norm() > 0.0)) f.fail("must not be the zero vector");
@@ -167,6 +161,11 @@ void claimName(std::set<std::string>& names, const std::string& name, const Json
 
 }  // namespace
 
+std::vector<Vec3> occluderCorners(const Occluder& o) {
+  const Vec3 hx = o.half_x_m * o.ex, hy = o.half_y_m * o.ey;
+  return {o.origin_m - hx - hy, o.origin_m + hx - hy, o.origin_m + hx + hy, o.origin_m - hx + hy};
+}
+
 void setOccluderFrame(Occluder& occ, const Vec3& normal, const Vec3& up, const std::string& field) {
   if (!(normal.norm() > 0.0) || !(up.norm() > 0.0)) throw core::InputError(field, "normal and up must not be zero");
   occ.normal = normal.normalized();
@@ -178,7 +177,7 @@ void setOccluderFrame(Occluder& occ, const Vec3& normal, const Vec3& up, const s
 
 void addOccluderRect(Room& room, Occluder occ, int material) {
   occ.group = "occluder:" + occ.name;
-  room.addPolygon(rectCorners(occ), material >= 0 ? material : openingMaterial(room), occ.group);
+  room.addPolygon(occluderCorners(occ), material >= 0 ? material : openingMaterial(room), occ.group);
   room.occluders.push_back(std::move(occ));
 }
 
@@ -191,7 +190,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
     const std::string fallback = type + std::to_string(i + 1);
     if (type == "door" || type == "slit") {
       o.allowKeys({"type", "name", "group", "centre", "normal", "up", "width_m", "height_m", "sill", "faces", "slits",
-                   "slit_width_m", "spacing_m", "leaf"});
+                   "slit_width_m", "spacing_m", "leaf", "panel"});
       Occluder occ = opening(o, room, type);
       occ.x.faces = occ.y.faces = faces(o, OccluderAxis::Faces::Kirchhoff);
       if (occ.name.empty()) occ.name = fallback;
@@ -208,6 +207,12 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       if (o.has("leaf")) {
         if (type != "door") o["leaf"].fail("only a door has a leaf");
         addLeaf(o["leaf"], room, occ, resolve);
+      }
+      if (o.has("panel")) {
+        if (type != "door") o["panel"].fail("only a door has a panel");
+        const int panel = resolve(o["panel"]);
+        if (room.isOpening(panel)) o["panel"].fail("the panel must be a solid material, not an opening");
+        room.occluders.back().panel_material = panel;
       }
     } else if (type == "edge" || type == "barrier") {
       Occluder zone;

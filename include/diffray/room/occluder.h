@@ -53,6 +53,9 @@ struct Occluder {
   /// 1 − α of `material`; openings and edges transmit.
   bool reflect = false;
   int material = -1;
+  /// Doors: the material of the panel that slides across the opening to close it (`diffray door`,
+  /// door/sliding_panel.h), or −1 when the scene gives none.
+  int panel_material = -1;
 };
 
 }  // namespace diffray::room

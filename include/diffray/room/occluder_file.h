@@ -23,6 +23,10 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
 /// Used by the parser and by code that builds scenes (validation cases).
 void addOccluderRect(Room& room, Occluder occ, int material = -1);
 
+/// The corners of the occluder's rectangle origin ± half_x·ex ± half_y·ey, in order (counter-clockwise seen
+/// from the side the normal points to).
+std::vector<Vec3> occluderCorners(const Occluder& o);
+
 /// The occluder's frame from a normal and an up vector: ey = up projected on the plane, ex = ey × normal.
 /// Throws InputError(field, ...) when up is parallel to the normal or either is zero.
 void setOccluderFrame(Occluder& occ, const Vec3& normal, const Vec3& up, const std::string& field);
