@@ -246,6 +246,60 @@ assert len(y) == 3 and all(abs(a - e) < 1e-6 for a, e in zip(y, (p, p, p / 4))),
 PY
   echo "FAIL: auralize: good run did not write [1, 1, 0.25] normalized"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# diffray door: bad input gives one line before any tracing and leaves no output (WAV, PNG, JSON, CSV).
+expect_door_error() {  # expect_door_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  rm -f "$tmp"/door.*
+  "$bin" door "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/door.* >/dev/null 2>&1; then
+    echo "FAIL: door: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+# A 0.3 s dry noise burst at 48 kHz, and the two samples of ok.wav at 16 kHz (too low for the 8 kHz band).
+python3 -c "
+import random, struct, wave
+w = wave.open('$tmp/burst.wav', 'wb'); w.setnchannels(1); w.setsampwidth(2); w.setframerate(48000)
+random.seed(1); w.writeframes(b''.join(struct.pack('<h', int(8000 * random.uniform(-1, 1))) for _ in range(14400)))"
+printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\x3e\x00\x00\x00\xfa\x00\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok16.wav"
+two="$rooms/two-rooms.json"
+expect_door_error "missing room file"      "$tmp/none.json" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "no --close"             "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav"
+expect_door_error "END before START"       "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.2:0.1
+expect_door_error "--close not a range"    "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close soon
+expect_door_error "--close with NaN"       "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close nan:1
+expect_door_error "one step"               "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --steps 1
+expect_door_error "room without a door"    "$rooms/shoebox.json" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "door without a panel"   "$rooms/doorway.json" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "no such door"           "$two" --door front --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "no such listener"       "$two" --listener nobody --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "missing dry file"       "$two" --in "$tmp/none.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "NaN in the dry signal"  "$two" --in "$tmp/nan.wav" -o "$tmp/door.wav" --close 0.1:0.2 --rays 100
+expect_door_error "dry rate too low"       "$two" --in "$tmp/ok16.wav" -o "$tmp/door.wav" --close 0.1:0.2
+expect_door_error "output not a .wav"      "$two" --in "$tmp/burst.wav" -o "$tmp/door.mp3" --close 0.1:0.2
+expect_door_error "output folder missing"  "$two" --in "$tmp/burst.wav" -o "$tmp/no/such/door.wav" --close 0.1:0.2
+expect_door_error "unknown diffraction"    "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --diffraction magic
+# The good path: two steps at few rays write the WAV (one channel per listener), the PNG, the JSON and the CSV.
+if "$bin" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.05:0.2 --steps 2 --rays 3000 >/dev/null 2>"$tmp/stderr" &&
+   [ "$(head -c 8 "$tmp/door.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
+   python3 - "$tmp/door.wav" "$tmp/door.json" "$tmp/door.csv" <<'PY'
+import json, struct, sys
+b = open(sys.argv[1], "rb").read()
+assert b[:4] == b"RIFF" and struct.unpack("<H", b[22:24])[0] == 3, "not a 3-channel WAV"
+side = json.load(open(sys.argv[2]))
+assert [s["gap_m"] for s in side["steps"]] == [side["door_width_m"], 0.0], side["steps"]
+assert len(side["listeners"]) == 3 and len(side["panel"]["transmission_loss_db"]) == 8
+rows = open(sys.argv[3]).read().splitlines()
+assert len(rows) == 1 + 2 * 3, rows
+PY
+then passes=$((passes + 1)); else
+  echo "FAIL: door: good run did not write the WAV, PNG, JSON and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

@@ -51,10 +51,6 @@ double negativeFraction(const std::vector<std::vector<double>>& traced) {
   return all > 0.0 ? neg / all : 0.0;
 }
 
-std::string withExtension(const std::string& path, const std::string& ext) {
-  return std::filesystem::path(path).replace_extension(ext).string();
-}
-
 void writeHistogramCsv(const std::string& path, const room::Room& room, const transport::RoomSimulation& sim) {
   core::writeFileAtomically(path, [&](std::ostream& out) {
     out << "listener,time_s";
@@ -71,28 +67,6 @@ void writeHistogramCsv(const std::string& path, const room::Room& room, const tr
       }
     }
   });
-}
-
-// What synthesis will need, checked before the (long) trace rather than after it.
-void checkSynthesis(const room::Room& room, double length_s) {
-  const std::string where = room.file.empty() ? "room" : room.file;
-  const double fs = room.output.sample_rate_hz;
-  const int top = room.bands.size() - 1;
-  if (!(room.bands.upperHz(top) < 0.5 * fs))
-    throw core::InputError(where + ": output.sample_rate_hz",
-                           "the " + room.bands.label(top) + " Hz band reaches past the Nyquist frequency of " +
-                               std::to_string(static_cast<long>(fs)) + " Hz; raise the sample rate");
-  if (!(room.volume() > 0.0))
-    throw core::InputError(where, "the geometry encloses no volume, which the IR synthesis needs (V in the "
-                                  "reflection density 4πc³t²/V)");
-  // Longest possible IR: --length, the file's length, or (auto) max_length_s.
-  const double longest = length_s > 0 ? length_s : (room.output.ir_length_s > 0 ? room.output.ir_length_s
-                                                                                 : room.output.max_length_s);
-  constexpr double kMaxFrames = 33554432.0;  // 2^25 frames: ~12 min at 48 kHz, a few GB while synthesizing
-  if (longest * fs > kMaxFrames)
-    throw core::InputError(where + ": output", "an IR of " + std::to_string(longest) + " s at " +
-                                                   std::to_string(static_cast<long>(fs)) +
-                                                   " Hz is over 2^25 samples; shorten max_length_s/ir_length_s");
 }
 
 }  // namespace
@@ -115,17 +89,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       ->check(CLI::Range(1e-3, 120.0));
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
-  sub->add_option("--diffraction", opts->diffraction,
-                  "none: geometric acoustics (doorways pass rays straight); wbsdf: rays diffract at the room's "
-                  "occluders (rooms/README.md); utd: edge-diffraction paths (Kouyoumjian-Pathak) of the mesh's edges "
-                  "added to the geometric response")
-      ->check(CLI::IsMember({"none", "wbsdf", "utd"}))
-      ->capture_default_str();
-  sub->add_option("--diffraction-order", opts->diffraction_order,
-                  "wbsdf: occluder scatterings per ray path; later crossings pass straight (each one multiplies "
-                  "the noise of the signed weights)")
-      ->check(CLI::Range(1, 8))
-      ->capture_default_str();
+  addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -153,7 +117,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       if (std::filesystem::equivalent(out, opts->room_file, ec))
         throw core::InputError(out, "would overwrite the room file " + opts->room_file + "; give -o another name");
     }
-    checkSynthesis(room, opts->length_s);
+    checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
+                   (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
 
     transport::RoomSimulationOptions so;
     so.rays = opts->rays;

@@ -4,6 +4,9 @@
 // are thrown as core::InputError and printed by main() as one line.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+
+#include "diffray/room/room.h"
 
 namespace diffray::cli {
 
@@ -19,11 +22,23 @@ struct CommonOptions {
 /// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
 
+/// Adds --diffraction none|wbsdf|utd and --diffraction-order N (1–8) to `sub`.
+void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
+
+/// `path` with its extension replaced by `ext` (".json").
+std::string withExtension(const std::string& path, const std::string& ext);
+
+/// What IR synthesis will need, checked before a (long) trace rather than after it: the room's top band below
+/// the Nyquist frequency of `sample_rate_hz` (else an InputError naming `rate_field`), an enclosed volume, and
+/// an IR (`length_s`, or the room file's) of at most 2^25 samples.
+void checkSynthesis(const room::Room& room, double length_s, double sample_rate_hz, const std::string& rate_field);
+
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
 Runner addWdfCommand(CLI::App& app, CommonOptions& common);
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
 Runner addIrCommand(CLI::App& app, CommonOptions& common);
 Runner addCompareCommand(CLI::App& app, CommonOptions& common);
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
+Runner addDoorCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

@@ -1,0 +1,280 @@
+// `diffray door ROOM.json --in DRY.wav -o OUT.wav --close START:END [--steps K] [--diffraction wbsdf|utd|none]`:
+// the sound of a door closing (issue 4/5, item 3). A sliding panel narrows the room's door from open (START)
+// to shut (END); the room is traced at K gaps (door/closing.h), each response is synthesized at the dry
+// signal's sample rate (the same seed for every step, so that neighbouring IRs differ by the door only), and
+// the dry signal is convolved through them with crossfades between their key times
+// (dsp::CrossfadeConvolver), streaming. The room's sources play the dry signal (a multichannel one is mixed
+// down to mono); OUT.wav has one channel per listener (or the one --listener names). Beside it: OUT.png, the
+// spectrogram of the first channel with START and END marked; OUT.json, the sidecar (the schedule, each step's
+// band levels re the open door per listener, the panel's transmission loss); OUT.csv, the same levels as a
+// table. Every output is written whole or not at all. Memory: the K IRs, and one channel of the output for
+// the spectrogram (4 bytes per frame); the dry signal itself streams.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "diffray/audio/wav.h"
+#include "diffray/cli/commands.h"
+#include "diffray/cli/spectrogram_plot.h"
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/core/progress.h"
+#include "diffray/door/closing.h"
+#include "diffray/door/sliding_panel.h"
+#include "diffray/dsp/crossfade_convolver.h"
+#include "diffray/dsp/spectrogram.h"
+#include "diffray/ir/synthesis.h"
+#include "diffray/room/scene_file.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct DoorOptions {
+  std::string room_file, in, out, close, door, listener, spectrogram;
+  int steps = 8;
+  std::string diffraction = "wbsdf";
+  int diffraction_order = 1;
+  std::uint64_t rays = 0;
+  double gain_db = 0.0;
+};
+
+constexpr int kBlock = 2048;          ///< convolution block (frames)
+constexpr int kSpectrogramWindow = 4096, kSpectrogramHop = 1024;
+
+void parseClose(const std::string& text, double& start_s, double& end_s) {
+  const auto colon = text.find(':');
+  bool ok = colon != std::string::npos;
+  if (ok) {
+    try {
+      std::size_t used_a = 0, used_b = 0;
+      const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+      start_s = std::stod(a, &used_a);
+      end_s = std::stod(b, &used_b);
+      ok = used_a == a.size() && used_b == b.size();
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok) throw core::InputError("--close", "must be START:END in seconds (e.g. 1.5:3), got \"" + text + "\"");
+}
+
+void checkOutputs(const DoorOptions& o, const std::string& png) {
+  namespace fs = std::filesystem;
+  if (fs::path(o.out).extension() != ".wav") throw core::InputError(o.out, "the output must be a .wav file");
+  for (const std::string& p : {o.out, png})
+    if (!fs::is_directory(fs::absolute(p).parent_path())) throw core::InputError(p, "its folder does not exist");
+  std::error_code ec;
+  for (const std::string& p : {o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png})
+    for (const std::string& input : {o.in, o.room_file})
+      if (fs::equivalent(p, input, ec)) throw core::InputError(p, "would overwrite the input " + input + "; give -o another name");
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    throw core::InputError("--spectrogram", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+}
+
+double toDb(double ratio) { return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity(); }
+
+/// Convolves the dry signal through the steps' IRs into OUT.wav; returns the first output channel.
+std::vector<float> render(audio::AudioReader& reader, const std::vector<std::vector<std::vector<float>>>& irs,
+                          const std::vector<long>& keys, double gain, const std::string& out) {
+  dsp::CrossfadeConvolver conv;
+  conv.init(kBlock, irs, 1, keys);
+  const int c_in = reader.channels(), c_out = conv.outputChannels();
+  audio::WavWriter writer(out, static_cast<int>(std::lround(reader.sampleRateHz())), c_out);
+  std::vector<float> raw(static_cast<std::size_t>(kBlock) * c_in), mono(kBlock), wet(static_cast<std::size_t>(kBlock) * c_out);
+  std::vector<float> first;
+  first.reserve(static_cast<std::size_t>(reader.frames() + irs[0][0].size()));
+  auto emit = [&](long n) {
+    for (long i = 0; i < n * c_out; ++i) wet[i] = static_cast<float>(wet[i] * gain);
+    writer.write(wet.data(), n);
+    for (long f = 0; f < n; ++f) first.push_back(wet[f * c_out]);
+  };
+  for (long n; (n = reader.read(raw.data(), kBlock)) > 0;) {
+    for (long f = 0; f < n; ++f) {
+      double s = 0.0;
+      for (int c = 0; c < c_in; ++c) s += raw[f * c_in + c];
+      mono[f] = static_cast<float>(s / c_in);
+    }
+    conv.process(mono.data(), wet.data(), n);
+    emit(n);
+  }
+  for (long left = conv.tailFrames(); left > 0;) {
+    const long n = std::min<long>(left, kBlock);
+    conv.flush(wet.data(), n);
+    emit(n);
+    left -= n;
+  }
+  writer.commit();
+  return first;
+}
+
+}  // namespace
+
+Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
+  auto opts = std::make_shared<DoorOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "door", "The sound of a door closing: a sliding panel shuts the room's door between START and END while DRY.wav "
+              "plays; the room is traced at K openings and the dry signal convolved through them with crossfades "
+              "(WAV + spectrogram PNG + JSON + CSV).");
+  sub->add_option("room", opts->room_file, "scene file with a door that has a \"panel\" material (rooms/README.md)")
+      ->required();
+  sub->add_option("--in", opts->in, "dry signal (WAV, FLAC, ...; its sample rate is the output's)")->required();
+  sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener)")->required();
+  sub->add_option("--close", opts->close, "START:END in seconds: the panel leaves the door open at START, shut at END")
+      ->required();
+  sub->add_option("--steps", opts->steps, "openings traced: gaps W, W/2, W/4, ... and shut")
+      ->check(CLI::Range(2, 32))
+      ->capture_default_str();
+  addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
+  sub->get_option("--diffraction")->default_val("wbsdf");
+  sub->add_option("--door", opts->door, "the door's name (default: the room's only door)");
+  sub->add_option("--listener", opts->listener, "render this listener only (default: all, one channel each)");
+  addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
+  CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)");
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+  sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(CLI::Range(-120.0, 120.0));
+  sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)");
+  sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
+
+  return [opts, &common, seed_option]() {
+    const auto t_start = std::chrono::steady_clock::now();
+    core::ThreadLimit limit(common.threads);
+    double start_s = 0.0, end_s = 0.0;
+    parseClose(opts->close, start_s, end_s);
+    std::vector<std::string> warnings;
+    const room::Room room = room::loadRoom(opts->room_file, &warnings);
+    if (seed_option->count() == 0) common.seed = room.output.seed;
+    const int door = door::findDoor(room, opts->door);
+    const room::Occluder& d = room.occluders[door];
+    const std::vector<door::ClosingStep> schedule = door::closingSchedule(2.0 * d.half_x_m, start_s, end_s, opts->steps);
+    std::vector<int> chosen;
+    for (int l = 0; l < static_cast<int>(room.listeners.size()); ++l)
+      if (opts->listener.empty() || room.listeners[l].name == opts->listener) chosen.push_back(l);
+    if (chosen.empty()) throw core::InputError("--listener", "the room has no listener named \"" + opts->listener + "\"");
+    const std::string png = opts->spectrogram.empty() ? withExtension(opts->out, ".png") : opts->spectrogram;
+    checkOutputs(*opts, png);
+    audio::AudioReader reader(opts->in);
+    const double fs = reader.sampleRateHz();
+    checkSynthesis(room, 0.0, fs, opts->in + ": sample rate");
+    if (end_s > static_cast<double>(reader.frames()) / fs)
+      warnings.push_back("the door is still closing when " + opts->in + " ends (at " +
+                         std::to_string(static_cast<double>(reader.frames()) / fs) + " s); the output's tail is the "
+                         "last IR's");
+    for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+
+    // The responses, one trace per step.
+    door::ClosingOptions co;
+    co.diffraction = opts->diffraction;
+    co.max_diffractions = opts->diffraction_order;
+    co.rays = opts->rays;
+    co.seed = common.seed;
+    const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
+    core::Progress progress("door " + room.name, rays * room.sources.size() * schedule.size());
+    co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+    const door::ClosingResponse cr = door::simulateClosing(room, door, schedule, co);
+    progress.finish();
+    for (const auto& w : cr.warnings) std::cerr << "diffray: warning: " << w << "\n";
+
+    // IRs at the dry signal's rate, key frames, levels.
+    std::vector<std::vector<std::vector<float>>> irs(schedule.size());
+    std::vector<long> keys;
+    nlohmann::ordered_json steps = nlohmann::ordered_json::array();
+    std::ostringstream csv;
+    csv << "step,time_s,gap_m,listener";
+    for (int b = 0; b < room.bands.size(); ++b) csv << ",level_re_open_db_" << room.bands.label(b) << "hz";
+    csv << '\n' << std::setprecision(6);
+    for (std::size_t k = 0; k < schedule.size(); ++k) {
+      keys.push_back(std::lround(schedule[k].time_s * fs));
+      nlohmann::ordered_json levels = nlohmann::ordered_json::object();
+      for (int l : chosen) {
+        const std::vector<double> h = ir::synthesize(cr.responses[k][l], fs, cr.length_s, cr.volume_m3,
+                                                     cr.speed_of_sound_m_s, common.seed + 7919ull * l);
+        irs[k].emplace_back(h.begin(), h.end());
+        const core::BandArray e = door::bandEnergies(cr.responses[k][l]), e0 = door::bandEnergies(cr.responses[0][l]);
+        nlohmann::ordered_json row = nlohmann::ordered_json::array();
+        csv << k << ',' << schedule[k].time_s << ',' << schedule[k].gap_m << ',' << room.listeners[l].name;
+        for (int b = 0; b < room.bands.size(); ++b) {
+          const double db = toDb(e[b] / e0[b]);
+          row.push_back(std::isfinite(db) ? nlohmann::ordered_json(std::round(db * 100.0) / 100.0) : nlohmann::ordered_json());
+          csv << ',' << db;
+        }
+        csv << '\n';
+        levels[room.listeners[l].name] = row;
+      }
+      steps.push_back({{"time_s", schedule[k].time_s}, {"gap_m", schedule[k].gap_m}, {"level_re_open_db", levels}});
+    }
+
+    // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
+    const std::vector<float> first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), opts->out);
+    const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
+                                                   kSpectrogramWindow, kSpectrogramHop);
+    SpectrogramPlotOptions po;
+    po.title = room.name + ": door " + d.name + " closing (" + opts->diffraction + "), listener " +
+               room.listeners[chosen[0]].name;
+    po.markers = {{start_s, "open"}, {end_s, "shut"}};
+    po.option = "--spectrogram";
+    writeSpectrogramPlot(png, spec, po);
+
+    nlohmann::ordered_json bands = nlohmann::ordered_json::array(), tl = nlohmann::ordered_json::array();
+    for (int b = 0; b < room.bands.size(); ++b) {
+      bands.push_back(room.bands.nominalHz(b));
+      tl.push_back(std::round(-toDb(cr.panel_transmission[b]) * 100.0) / 100.0);
+    }
+    nlohmann::ordered_json listeners = nlohmann::ordered_json::array();
+    for (int l : chosen) listeners.push_back(room.listeners[l].name);
+    std::vector<std::string> all_warnings = warnings;
+    all_warnings.insert(all_warnings.end(), cr.warnings.begin(), cr.warnings.end());
+    nlohmann::ordered_json side{
+        {"diffray_version", DIFFRAY_VERSION},
+        {"room", room.name},
+        {"room_file", opts->room_file},
+        {"door", d.name},
+        {"door_width_m", cr.width_m},
+        {"dry", opts->in},
+        {"wav", opts->out},
+        {"spectrogram", png},
+        {"sample_rate_hz", fs},
+        {"close_s", {start_s, end_s}},
+        {"diffraction", opts->diffraction},
+        {"panel", {{"material", cr.panel_name}, {"transmission_loss_db", tl}}},
+        {"band_centres_hz", bands},
+        {"listeners", listeners},
+        {"ir_length_s", cr.length_s},
+        {"seed", common.seed},
+        {"rays_per_source_and_step", rays},
+        {"threads", core::ThreadLimit::current()},
+        {"steps", steps},
+        {"warnings", all_warnings}};
+    core::writeFileAtomically(withExtension(opts->out, ".csv"), [&](std::ostream& out) { out << csv.str(); });
+    side["timing_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    core::writeFileAtomically(withExtension(opts->out, ".json"), [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    if (common.json) {
+      std::cout << side.dump(2) << std::endl;
+      return 0;
+    }
+    std::printf("%s: door %s closes %.2f-%.2f s in %zu steps (%s), %llu rays per step -> %s (+ .png, .json, .csv)\n",
+                room.name.c_str(), d.name.c_str(), start_s, end_s, schedule.size(), opts->diffraction.c_str(),
+                static_cast<unsigned long long>(rays), opts->out.c_str());
+    std::printf("level re the open door (dB), listener %s:\n%8s %8s", room.listeners[chosen[0]].name.c_str(), "time_s",
+                "gap_m");
+    for (int b = 0; b < room.bands.size(); ++b) std::printf(" %7s", room.bands.label(b).c_str());
+    std::printf("\n");
+    for (std::size_t k = 0; k < schedule.size(); ++k) {
+      std::printf("%8.3f %8.4f", schedule[k].time_s, schedule[k].gap_m);
+      const core::BandArray e = door::bandEnergies(cr.responses[k][chosen[0]]);
+      const core::BandArray e0 = door::bandEnergies(cr.responses[0][chosen[0]]);
+      for (int b = 0; b < room.bands.size(); ++b) std::printf(" %7.1f", toDb(e[b] / e0[b]));
+      std::printf("\n");
+    }
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli
