@@ -273,6 +273,8 @@ expect_spectrogram_error "window too short"      "$tmp/ok.wav" -o "$tmp/spec.png
 expect_spectrogram_error "negative hop"          "$tmp/ok.wav" -o "$tmp/spec.png" --hop -3
 expect_spectrogram_error "zero dB range"         "$tmp/ok.wav" -o "$tmp/spec.png" --range 0
 expect_spectrogram_error "no -o"                 "$tmp/ok.wav"
+expect_spectrogram_error "mark without a time"  "$tmp/ok.wav" -o "$tmp/spec.png" --mark :START
+expect_spectrogram_error "non-numeric mark"      "$tmp/ok.wav" -o "$tmp/spec.png" --mark soon:END
 # The good path (with gnuplot): a PNG, and nothing else left beside it.
 if command -v gnuplot >/dev/null 2>&1; then
   python3 - "$tmp/sweep.wav" <<'PY'
@@ -288,7 +290,7 @@ with wave.open(sys.argv[1], "wb") as w:
     w.writeframes(frames)
 PY
   rm -f "$tmp"/spec.*
-  if "$bin" spectrogram "$tmp/sweep.wav" -o "$tmp/spec.png" --window 512 --channel 2 >/dev/null 2>"$tmp/stderr" &&
+  if "$bin" spectrogram "$tmp/sweep.wav" -o "$tmp/spec.png" --window 512 --channel 2 --mark 0.25:START --mark 0.75 >/dev/null 2>"$tmp/stderr" &&
      [ "$(head -c 8 "$tmp/spec.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
      [ "$(ls "$tmp"/spec.* | wc -l)" -eq 1 ]; then passes=$((passes + 1)); else
     echo "FAIL: spectrogram: good run did not write a PNG"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi

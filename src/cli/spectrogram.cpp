@@ -1,8 +1,9 @@
-// `diffray spectrogram IN.wav -o OUT.png [--window N] [--hop N] [--channel C]`: the spectrogram of any audio
+// `diffray spectrogram IN.wav -o OUT.png [--window N] [--hop N] [--channel C] [--mark T:LABEL]…`: the spectrogram of any audio
 // file libsndfile reads (dsp/spectrogram.h: Hann window, dB re a full-scale sine) drawn as a PNG with a log
 // frequency axis from 50 Hz to fs/2 (cli/spectrogram_plot.h). One channel (--channel, from 1) or, by
 // default, the mean of all channels. The file is read block by block; only the analysed channel is kept.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -26,6 +27,7 @@ struct SpectrogramOptions {
   int channel = 0;  ///< 0: the mean of all channels
   double range_db = 90.0;
   std::string title;
+  std::vector<std::string> marks;  ///< TIME[:LABEL]
 };
 
 constexpr long kMaxAutoFrames = 8000;  // ten times the plot's columns: finer hops would not show
@@ -57,6 +59,23 @@ std::vector<float> readChannel(audio::AudioReader& reader, int channel) {
   return x;
 }
 
+/// "1.5:START" → {1.5, "START"}; "2" → {2, "2 s"}. Throws core::InputError naming --mark.
+TimeMarker parseMark(const std::string& text) {
+  const size_t colon = text.find(':');
+  const std::string time = text.substr(0, colon);
+  TimeMarker m;
+  size_t used = 0;
+  try {
+    m.time_s = std::stod(time, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (time.empty() || used != time.size() || !std::isfinite(m.time_s))
+    throw core::InputError("--mark", "expected TIME[:LABEL] with TIME in seconds, got \"" + text + "\"");
+  m.label = colon == std::string::npos ? time + " s" : text.substr(colon + 1);
+  return m;
+}
+
 }  // namespace
 
 Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
@@ -72,8 +91,12 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
   sub->add_option("--channel", o->channel, "channel to analyse, from 1 (default: the mean of all channels)");
   sub->add_option("--range", o->range_db, "dB shown below the loudest pixel")->capture_default_str();
   sub->add_option("--title", o->title, "plot title (default: the file name)");
+  sub->add_option("--mark", o->marks, "TIME[:LABEL]: a dashed vertical line at TIME seconds (repeatable), "
+                                      "e.g. --mark 1.5:START --mark 3:END");
   return [o]() {
     checkOutputPath(*o);
+    std::vector<TimeMarker> marks;
+    for (const std::string& text : o->marks) marks.push_back(parseMark(text));
     if (o->hop < 0) throw core::InputError("--hop", "must be at least 1, got " + std::to_string(o->hop));
     core::requirePositive("--range", o->range_db);
     audio::AudioReader reader(o->in);
@@ -95,6 +118,7 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
                                         (o->channel > 0 ? ", channel " + std::to_string(o->channel) : std::string())
                                   : o->title;
     plot.range_db = o->range_db;
+    plot.markers = marks;
     plot.option = "-o";
     writeSpectrogramPlot(o->out, s, plot);
     std::cout << "wrote " << o->out << ": " << s.frames() << " frames of " << o->window << " samples every "
