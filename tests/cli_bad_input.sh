@@ -246,6 +246,56 @@ assert len(y) == 3 and all(abs(a - e) < 1e-6 for a, e in zip(y, (p, p, p / 4))),
 PY
   echo "FAIL: auralize: good run did not write [1, 1, 0.25] normalized"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# diffray spectrogram: bad input gives one line and leaves no PNG (nor a temporary) behind.
+expect_spectrogram_error() {  # expect_spectrogram_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  rm -f "$tmp"/spec.*
+  "$bin" spectrogram "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/spec.* >/dev/null 2>&1; then
+    echo "FAIL: spectrogram: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+expect_spectrogram_error "missing input file"    "$tmp/none.wav" -o "$tmp/spec.png"
+expect_spectrogram_error "text file named .wav"  "$tmp/text.wav" -o "$tmp/spec.png"
+expect_spectrogram_error "NaN in the input"      "$tmp/nan.wav" -o "$tmp/spec.png"
+expect_spectrogram_error "output folder missing" "$tmp/ok.wav" -o "$tmp/no/such/dir/spec.png"
+expect_spectrogram_error "output not a .png"     "$tmp/ok.wav" -o "$tmp/spec.wav"
+expect_spectrogram_error "channel past the last" "$tmp/ok.wav" -o "$tmp/spec.png" --channel 2
+expect_spectrogram_error "negative channel"      "$tmp/ok.wav" -o "$tmp/spec.png" --channel -1
+expect_spectrogram_error "odd window"            "$tmp/ok.wav" -o "$tmp/spec.png" --window 1001
+expect_spectrogram_error "window too short"      "$tmp/ok.wav" -o "$tmp/spec.png" --window 4
+expect_spectrogram_error "negative hop"          "$tmp/ok.wav" -o "$tmp/spec.png" --hop -3
+expect_spectrogram_error "zero dB range"         "$tmp/ok.wav" -o "$tmp/spec.png" --range 0
+expect_spectrogram_error "no -o"                 "$tmp/ok.wav"
+expect_spectrogram_error "mark without a time"  "$tmp/ok.wav" -o "$tmp/spec.png" --mark :START
+expect_spectrogram_error "non-numeric mark"      "$tmp/ok.wav" -o "$tmp/spec.png" --mark soon:END
+# The good path (with gnuplot): a PNG, and nothing else left beside it.
+if command -v gnuplot >/dev/null 2>&1; then
+  python3 - "$tmp/sweep.wav" <<'PY'
+import math, struct, sys, wave
+fs, T = 16000, 1.0
+with wave.open(sys.argv[1], "wb") as w:
+    w.setnchannels(2); w.setsampwidth(2); w.setframerate(fs)
+    frames = b""
+    for n in range(int(fs * T)):
+        t = n / fs
+        v = int(20000 * math.sin(2 * math.pi * (100 * t + (6000 - 100) * t * t / (2 * T))))
+        frames += struct.pack("<hh", v, v // 2)
+    w.writeframes(frames)
+PY
+  rm -f "$tmp"/spec.*
+  if "$bin" spectrogram "$tmp/sweep.wav" -o "$tmp/spec.png" --window 512 --channel 2 --mark 0.25:START --mark 0.75 >/dev/null 2>"$tmp/stderr" &&
+     [ "$(head -c 8 "$tmp/spec.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
+     [ "$(ls "$tmp"/spec.* | wc -l)" -eq 1 ]; then passes=$((passes + 1)); else
+    echo "FAIL: spectrogram: good run did not write a PNG"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+fi
+
 # diffray door: bad input gives one line before any tracing and leaves no output (WAV, PNG, JSON, CSV).
 expect_door_error() {  # expect_door_error DESCRIPTION ARGS...
   local what="$1"; shift

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner compare = diffray::cli::addCompareCommand(app, common);
   diffray::cli::Runner auralize = diffray::cli::addAuralizeCommand(app, common);
   diffray::cli::Runner door = diffray::cli::addDoorCommand(app, common);
+  diffray::cli::Runner spectrogram = diffray::cli::addSpectrogramCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("auralize")) return auralize();
     if (app.got_subcommand("door")) return door();
+    if (app.got_subcommand("spectrogram")) return spectrogram();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

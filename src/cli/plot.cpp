@@ -64,6 +64,8 @@ void runGnuplot(const std::string& option, const std::string& png_path,
   }
 }
 
+std::string gnuplotQuoted(const std::string& s) { return quoted(s); }
+
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results) {
   runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
   const fs::path dir(dir_name);

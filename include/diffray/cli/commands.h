@@ -40,5 +40,6 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common);
 Runner addCompareCommand(CLI::App& app, CommonOptions& common);
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
 Runner addDoorCommand(CLI::App& app, CommonOptions& common);
+Runner addSpectrogramCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

@@ -21,6 +21,9 @@ namespace diffray::cli {
 void runGnuplot(const std::string& option, const std::string& png_path,
                 const std::function<std::string(const std::string&, const std::string&)>& script_for);
 
+/// `s` as a gnuplot single-quoted string (quotes doubled), for titles and file names in scripts.
+std::string gnuplotQuoted(const std::string& s);
+
 /// Throws core::InputError naming --plot when gnuplot is missing or fails.
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results);
 

@@ -1,0 +1,130 @@
+// `diffray spectrogram IN.wav -o OUT.png [--window N] [--hop N] [--channel C] [--mark T:LABEL]…`: the spectrogram of any audio
+// file libsndfile reads (dsp/spectrogram.h: Hann window, dB re a full-scale sine) drawn as a PNG with a log
+// frequency axis from 50 Hz to fs/2 (cli/spectrogram_plot.h). One channel (--channel, from 1) or, by
+// default, the mean of all channels. The file is read block by block; only the analysed channel is kept.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include "diffray/audio/wav.h"
+#include "diffray/cli/commands.h"
+#include "diffray/cli/spectrogram_plot.h"
+#include "diffray/core/error.h"
+#include "diffray/dsp/spectrogram.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct SpectrogramOptions {
+  std::string in;
+  std::string out;
+  int window = 2048;
+  int hop = 0;  ///< 0: window/4, raised for long inputs (kMaxAutoFrames)
+  int channel = 0;  ///< 0: the mean of all channels
+  double range_db = 90.0;
+  std::string title;
+  std::vector<std::string> marks;  ///< TIME[:LABEL]
+};
+
+constexpr long kMaxAutoFrames = 8000;  // ten times the plot's columns: finer hops would not show
+
+void checkOutputPath(const SpectrogramOptions& o) {
+  namespace fs = std::filesystem;
+  if (fs::path(o.out).extension() != ".png") throw core::InputError(o.out, "the output must be a .png file");
+  if (!fs::is_directory(fs::absolute(o.out).parent_path())) throw core::InputError(o.out, "its folder does not exist");
+  std::error_code ec;
+  if (fs::equivalent(o.out, o.in, ec)) throw core::InputError(o.out, "would overwrite the input");
+}
+
+/// The analysed channel (0-based) of `reader`, or the mean of all channels for channel < 0.
+std::vector<float> readChannel(audio::AudioReader& reader, int channel) {
+  constexpr long kBlock = 8192;
+  const int cin = reader.channels();
+  std::vector<float> block(static_cast<size_t>(kBlock * cin)), x;
+  x.reserve(static_cast<size_t>(std::max(0L, reader.frames())));
+  for (long frames; (frames = reader.read(block.data(), kBlock)) > 0;)
+    for (long f = 0; f < frames; ++f) {
+      if (channel >= 0) {
+        x.push_back(block[static_cast<size_t>(f * cin + channel)]);
+        continue;
+      }
+      double sum = 0.0;
+      for (int c = 0; c < cin; ++c) sum += block[static_cast<size_t>(f * cin + c)];
+      x.push_back(static_cast<float>(sum / cin));
+    }
+  return x;
+}
+
+/// "1.5:START" → {1.5, "START"}; "2" → {2, "2 s"}. Throws core::InputError naming --mark.
+TimeMarker parseMark(const std::string& text) {
+  const size_t colon = text.find(':');
+  const std::string time = text.substr(0, colon);
+  TimeMarker m;
+  size_t used = 0;
+  try {
+    m.time_s = std::stod(time, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (time.empty() || used != time.size() || !std::isfinite(m.time_s))
+    throw core::InputError("--mark", "expected TIME[:LABEL] with TIME in seconds, got \"" + text + "\"");
+  m.label = colon == std::string::npos ? time + " s" : text.substr(colon + 1);
+  return m;
+}
+
+}  // namespace
+
+Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
+  auto o = std::make_shared<SpectrogramOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "spectrogram", "Draw the spectrogram of an audio file (Hann-windowed FFT, dB, log frequency axis) as a PNG "
+                     "(needs gnuplot).");
+  sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->required();
+  sub->add_option("-o,--out", o->out, "output .png")->required();
+  sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")->capture_default_str();
+  sub->add_option("--hop", o->hop, "frame step in samples (default: window/4, larger for long files so that "
+                                   "there are at most 8000 frames)");
+  sub->add_option("--channel", o->channel, "channel to analyse, from 1 (default: the mean of all channels)");
+  sub->add_option("--range", o->range_db, "dB shown below the loudest pixel")->capture_default_str();
+  sub->add_option("--title", o->title, "plot title (default: the file name)");
+  sub->add_option("--mark", o->marks, "TIME[:LABEL]: a dashed vertical line at TIME seconds (repeatable), "
+                                      "e.g. --mark 1.5:START --mark 3:END");
+  return [o]() {
+    checkOutputPath(*o);
+    std::vector<TimeMarker> marks;
+    for (const std::string& text : o->marks) marks.push_back(parseMark(text));
+    if (o->hop < 0) throw core::InputError("--hop", "must be at least 1, got " + std::to_string(o->hop));
+    core::requirePositive("--range", o->range_db);
+    audio::AudioReader reader(o->in);
+    if (o->channel < 0 || o->channel > reader.channels())
+      throw core::InputError("--channel", "must lie between 1 and " + std::to_string(reader.channels()) + " (" +
+                                              o->in + " has " + std::to_string(reader.channels()) + "), got " +
+                                              std::to_string(o->channel));
+    const std::vector<float> x = readChannel(reader, o->channel - 1);
+    const auto n = static_cast<long>(x.size());
+    int hop = o->hop;
+    if (hop == 0) {
+      hop = std::max(1, o->window / 4);
+      const long frames = n <= o->window ? 1 : 1 + (n - o->window + hop - 1) / hop;
+      if (frames > kMaxAutoFrames) hop = static_cast<int>((n + kMaxAutoFrames - 1) / kMaxAutoFrames);
+    }
+    const dsp::Spectrogram s = dsp::spectrogram(x.data(), n, reader.sampleRateHz(), o->window, hop);
+    SpectrogramPlotOptions plot;
+    plot.title = o->title.empty() ? std::filesystem::path(o->in).filename().string() +
+                                        (o->channel > 0 ? ", channel " + std::to_string(o->channel) : std::string())
+                                  : o->title;
+    plot.range_db = o->range_db;
+    plot.markers = marks;
+    plot.option = "-o";
+    writeSpectrogramPlot(o->out, s, plot);
+    std::cout << "wrote " << o->out << ": " << s.frames() << " frames of " << o->window << " samples every "
+              << hop << " (" << n << " samples at " << reader.sampleRateHz() << " Hz)\n";
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli
