@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner metrics = diffray::cli::addMetricsCommand(app, common);
   diffray::cli::Runner compare = diffray::cli::addCompareCommand(app, common);
   diffray::cli::Runner auralize = diffray::cli::addAuralizeCommand(app, common);
+  diffray::cli::Runner dry_signal = diffray::cli::addSignalCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("metrics")) return metrics();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("auralize")) return auralize();
+    if (app.got_subcommand("signal")) return dry_signal();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

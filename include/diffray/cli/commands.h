@@ -25,5 +25,6 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common);
 Runner addIrCommand(CLI::App& app, CommonOptions& common);
 Runner addCompareCommand(CLI::App& app, CommonOptions& common);
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
+Runner addSignalCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli
