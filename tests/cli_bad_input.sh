@@ -220,7 +220,13 @@ expect_auralize_error() {  # expect_auralize_error DESCRIPTION ARGS...
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x44\xac\x00\x00\x10\xb1\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok44.wav"
 expect_auralize_error "missing IR file"        --ir "$tmp/none.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
 expect_auralize_error "missing input file"     --ir "$tmp/ok.wav" --in "$tmp/none.wav" -o "$tmp/wet.wav"
-expect_auralize_error "sample-rate mismatch"   --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav"
+expect_auralize_error "rate mismatch, --no-resample" --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav" --no-resample
+# Without --no-resample the IR is resampled to the input's rate: one info line, a 44.1 kHz output.
+if "$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav" >"$tmp/stdout" 2>"$tmp/stderr" &&
+   grep -q "resampled the impulse response from 48000 Hz to the input's 44100 Hz" "$tmp/stdout" &&
+   grep -q "at 44100 Hz" "$tmp/stdout" && [ ! -s "$tmp/stderr" ]; then passes=$((passes + 1)); else
+  echo "FAIL: auralize: a 48 kHz IR on a 44.1 kHz input was not resampled"; sed 's/^/    /' "$tmp/stdout" "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp"/wet.*
 expect_auralize_error "NaN in the input"       --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav"
 expect_auralize_error "NaN in the input, normalized" --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav" --normalize
 expect_auralize_error "NaN in the IR"          --ir "$tmp/nan.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
@@ -349,6 +355,43 @@ assert len(rows) == 1 + 2 * 3, rows
 PY
 then passes=$((passes + 1)); else
   echo "FAIL: door: good run did not write the WAV, PNG, JSON and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
+# diffray signal: bad options give one line and leave no WAV behind.
+expect_signal_error() {  # expect_signal_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  rm -f "$tmp"/sig.*
+  "$bin" signal "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local code=$?
+  local lines
+  lines=$(wc -l <"$tmp/stderr")
+  if [ "$code" -ne 2 ] || [ "$lines" -ne 1 ] || ls "$tmp"/sig.* >/dev/null 2>&1; then
+    echo "FAIL: signal: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+    fails=$((fails + 1))
+  else
+    passes=$((passes + 1))
+  fi
+}
+expect_signal_error "unknown kind"          noise -o "$tmp/sig.wav"
+expect_signal_error "negative duration"     sweep -o "$tmp/sig.wav" --duration -1
+expect_signal_error "zero duration"         clicks -o "$tmp/sig.wav" --duration 0
+expect_signal_error "NaN duration"          sweep -o "$tmp/sig.wav" --duration nan
+expect_signal_error "from = to"             sweep -o "$tmp/sig.wav" --from 1000 --to 1000
+expect_signal_error "from above to"         sweep -o "$tmp/sig.wav" --from 2000 --to 1000
+expect_signal_error "to above Nyquist"      sweep -o "$tmp/sig.wav" --rate 22050
+expect_signal_error "rate too low"          sweep -o "$tmp/sig.wav" --rate 100 --to 40
+expect_signal_error "rate too high"         clicks -o "$tmp/sig.wav" --rate 1000000
+expect_signal_error "level above 0 dBFS"    clicks -o "$tmp/sig.wav" --level 3
+expect_signal_error "zero interval"         clicks -o "$tmp/sig.wav" --interval 0
+expect_signal_error "option of another kind" clicks -o "$tmp/sig.wav" --from 100
+expect_signal_error "unwritable path"       sweep -o "$tmp/no/such/dir/sig.wav"
+expect_signal_error "output not a .wav"     sweep -o "$tmp/sig.csv"
+expect_signal_error "speed out of range"    speech -o "$tmp/sig.wav" --speed 5
+expect_signal_error "unknown voice"         speech -o "$tmp/sig.wav" --voice nosuchvoice
+expect_signal_error "empty text"            speech -o "$tmp/sig.wav" --text " "
+if "$bin" signal clicks -o "$tmp/sig.wav" --duration 0.5 --interval 0.1 >/dev/null 2>"$tmp/stderr" &&
+   [ "$(stat -c %s "$tmp/sig.wav")" -gt 96000 ]; then passes=$((passes + 1)); else
+  echo "FAIL: signal: a good click train was not written"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp"/sig.*
 
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate

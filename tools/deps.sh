@@ -4,6 +4,7 @@
 # command to run and stops.
 DIFFRAY_PACKAGES=(build-essential cmake pkg-config libembree-dev libtbb-dev libfftw3-dev libeigen3-dev
   libsndfile1-dev portaudio19-dev libcerf-dev nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox)
+DIFFRAY_PACKAGES+=(libsamplerate0-dev espeak-ng)  # issue 5: resampling in auralize, speech in `diffray signal`
 
 diffray_install_deps() {
   local missing=()

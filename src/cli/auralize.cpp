@@ -1,8 +1,11 @@
-// `diffray auralize --ir IR.wav --in DRY.wav -o WET.wav [--gain DB] [--normalize]`: convolves a dry signal
-// with an impulse response (dsp::MultichannelConvolver: uniformly partitioned FFT convolution) into a
-// 32-bit float WAV of input + IR − 1 frames (the whole tail). Streaming: the dry signal is read and the
+// `diffray auralize --ir IR.wav --in DRY.wav -o WET.wav [--gain DB] [--normalize] [--no-resample]`: convolves
+// a dry signal with an impulse response (dsp::MultichannelConvolver: uniformly partitioned FFT convolution,
+// output channels in parallel on all cores) into a 32-bit float WAV of input + IR − 1 frames (the whole tail). Streaming: the dry signal is read and the
 // result written in blocks, so memory grows with the IR, not with the input. Channel pairing as in
-// dsp/multichannel_convolver.h. The sample rates must agree (no resampling): a mismatch is one error line.
+// dsp/multichannel_convolver.h. An impulse response at another sample rate than the dry signal is resampled
+// to the dry signal's rate (dsp::resampleImpulseResponse: libsamplerate's best sinc, scaled so the filter's
+// frequency response is kept) with one info line on stdout; the IR is short, so memory stays bounded and the
+// input still streams. --no-resample refuses a mismatch with one error line instead.
 // --gain scales by 10^(DB/20). --normalize takes two passes through a temporary file: the unscaled result
 // is written to OUT.wav.unscaled.tmp.PID (float32, so nothing is lost) while its peak is measured, then read
 // back, scaled so the peak sits at −1 dBFS (then --gain on top) and written to OUT.wav; the temporary is
@@ -21,6 +24,7 @@
 #include "diffray/cli/commands.h"
 #include "diffray/core/error.h"
 #include "diffray/dsp/multichannel_convolver.h"
+#include "diffray/dsp/resample.h"
 
 namespace diffray::cli {
 
@@ -32,17 +36,24 @@ struct AuralizeOptions {
   std::string out;
   double gain_db = 0.0;
   bool normalize = false;
+  bool no_resample = false;
 };
 
 constexpr double kNormalizedPeakDbfs = -1.0;
 
-/// FFT block: the IR's length rounded up to a power of two, within [256, 8192] frames (longer IRs use
-/// several partitions; the block bounds the FFT size and so the cache footprint).
+/// FFT block: a power of two near a quarter of the IR's length, within [1024, 32768] frames. Offline, the
+/// cost per sample is two FFTs of 2·block (∝ log block) plus one complex multiply-add per partition over
+/// spectra that stream from memory (∝ IR / block); on a 3 s IR at 48 kHz, 32768 (5 partitions) measured
+/// 35 % faster than 8192 (18) and than 65536 (3), whose FFTs leave the cache.
 int blockFor(long ir_frames) {
-  int block = 256;
-  while (block < ir_frames && block < 8192) block *= 2;
+  int block = 1024;
+  while (block < (ir_frames + 3) / 4 && block < 32768) block *= 2;
   return block;
 }
+
+/// Frames read, convolved and written per step: several blocks, so processParallel() starts its threads
+/// rarely and the file I/O goes in large pieces.
+long chunkFor(int block) { return std::max<long>(block, 65536); }
 
 /// Removes a file when it goes out of scope (the temporary of the two-pass --normalize).
 struct RemoveOnExit {
@@ -66,19 +77,20 @@ double dbfs(double peak) { return peak > 0.0 ? 20.0 * std::log10(peak) : -INFINI
 double convolveInto(audio::AudioReader& dry, dsp::MultichannelConvolver& conv, int block, float gain,
                     audio::WavWriter& writer) {
   const int cin = conv.inputChannels(), cout = conv.outputChannels();
-  std::vector<float> in(static_cast<size_t>(block) * static_cast<size_t>(cin), 0.0f);
-  std::vector<float> out(static_cast<size_t>(block) * static_cast<size_t>(cout), 0.0f);
+  const long chunk = chunkFor(block);
+  std::vector<float> in(static_cast<size_t>(chunk) * static_cast<size_t>(cin), 0.0f);
+  std::vector<float> out(static_cast<size_t>(chunk) * static_cast<size_t>(cout), 0.0f);
   double peak = 0.0;
   long tail = conv.irLength() - 1;
   for (;;) {
-    long frames = dry.read(in.data(), block);
+    long frames = dry.read(in.data(), chunk);
     if (frames == 0) {  // the input is over: zeros until the IR's tail has rung out
       if (tail == 0) break;
-      frames = std::min<long>(tail, block);
+      frames = std::min<long>(tail, chunk);
       tail -= frames;
       std::fill(in.begin(), in.end(), 0.0f);
     }
-    conv.process(in.data(), out.data(), frames);
+    conv.processParallel(in.data(), out.data(), frames);
     const long samples = frames * cout;
     for (long i = 0; i < samples; ++i) {
       out[static_cast<size_t>(i)] *= gain;
@@ -99,6 +111,29 @@ void scaleInto(audio::AudioReader& from, float gain, audio::WavWriter& writer) {
   }
 }
 
+/// The IR's channels at the dry signal's rate: as read when the rates agree, else resampled as a filter (or
+/// refused under --no-resample).
+std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const AuralizeOptions& o) {
+  std::vector<float> h(ir.samples.begin(), ir.samples.end());
+  if (ir.sample_rate_hz != rate_hz) {
+    const std::string ir_hz = std::to_string(static_cast<long>(ir.sample_rate_hz)) + " Hz";
+    const std::string in_hz = std::to_string(static_cast<long>(rate_hz)) + " Hz";
+    if (o.no_resample)
+      throw core::InputError(o.ir, "sample rate " + ir_hz + " differs from the input's " + in_hz +
+                                       " (--no-resample: resample one of them first, or drop the flag)");
+    h = dsp::resampleImpulseResponse(h, ir.channels, ir.sample_rate_hz, rate_hz);
+    std::cout << "resampled the impulse response from " << ir_hz << " to the input's " << in_hz << " (libsamplerate, best sinc; "
+              << ir.frames() << " -> " << h.size() / static_cast<size_t>(ir.channels) << " frames)\n";
+  }
+  std::vector<std::vector<float>> channels(static_cast<size_t>(ir.channels));
+  const size_t frames = h.size() / static_cast<size_t>(ir.channels);
+  for (size_t c = 0; c < channels.size(); ++c) {
+    channels[c].resize(frames);
+    for (size_t f = 0; f < frames; ++f) channels[c][f] = h[f * channels.size() + c];
+  }
+  return channels;
+}
+
 }  // namespace
 
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
@@ -107,27 +142,21 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
       "auralize", "Convolve a dry recording with an impulse response (partitioned FFT convolution, streaming) "
                   "into a 32-bit float WAV that keeps the whole reverberant tail.");
   sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output")->required();
-  sub->add_option("--in", o->in, "dry signal (same sample rate as the IR)")->required();
+  sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)")->required();
   sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long")->required();
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output")->capture_default_str();
   sub->add_flag("--normalize", o->normalize,
                 "scale the output's peak to -1 dBFS (two passes through a temporary file; --gain applies on top)");
+  sub->add_flag("--no-resample", o->no_resample,
+                "refuse an IR whose sample rate differs from the input's instead of resampling it");
   return [o]() {
     core::requireFinite("--gain", o->gain_db);
     checkOutputPath(*o);
     audio::AudioReader dry(o->in);
     const audio::AudioBuffer ir = audio::readAudio(o->ir);
-    if (ir.sample_rate_hz != dry.sampleRateHz())
-      throw core::InputError(o->in, "sample rate " + std::to_string(static_cast<long>(dry.sampleRateHz())) +
-                                        " Hz differs from the impulse response's " +
-                                        std::to_string(static_cast<long>(ir.sample_rate_hz)) + " Hz (" + o->ir +
-                                        "); resample one of them first");
-    std::vector<std::vector<float>> ir_channels;
-    for (int c = 0; c < ir.channels; ++c) {
-      const std::vector<double> h = ir.channel(c);
-      ir_channels.emplace_back(h.begin(), h.end());
-    }
-    const int block = blockFor(ir.frames());
+    const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), *o);
+    const long ir_frames = static_cast<long>(ir_channels.front().size());
+    const int block = blockFor(ir_frames);
     dsp::MultichannelConvolver conv;
     conv.init(block, ir_channels, dry.channels());
     const int rate = static_cast<int>(dry.sampleRateHz());
@@ -160,7 +189,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     }
     std::cout << "wrote " << o->out << ": " << frames << " frames x " << conv.outputChannels() << " channel"
               << (conv.outputChannels() > 1 ? "s" : "") << " at " << rate << " Hz (input " << dry.frames()
-              << " + IR " << ir.frames() << " - 1), gain " << applied_db << " dB, peak " << dbfs(peak) << " dBFS\n";
+              << " + IR " << ir_frames << " - 1), gain " << applied_db << " dB, peak " << dbfs(peak) << " dBFS\n";
     return 0;
   };
 }

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner auralize = diffray::cli::addAuralizeCommand(app, common);
   diffray::cli::Runner door = diffray::cli::addDoorCommand(app, common);
   diffray::cli::Runner spectrogram = diffray::cli::addSpectrogramCommand(app, common);
+  diffray::cli::Runner dry_signal = diffray::cli::addSignalCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("auralize")) return auralize();
     if (app.got_subcommand("door")) return door();
     if (app.got_subcommand("spectrogram")) return spectrogram();
+    if (app.got_subcommand("signal")) return dry_signal();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

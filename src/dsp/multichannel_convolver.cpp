@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 #include "diffray/core/error.h"
 
 namespace diffray::dsp {
@@ -33,21 +35,31 @@ void MultichannelConvolver::init(int block_size, const std::vector<std::vector<f
   input_channels_ = input_channels;
   block_ = block_size;
   scratch_in_.assign(static_cast<size_t>(block_size), 0.0f);
-  scratch_out_.assign(static_cast<size_t>(block_size), 0.0f);
+  channel_scratch_.assign(convolvers_.size(), std::vector<float>(static_cast<size_t>(block_size), 0.0f));
+}
+
+// In-place convolution of the de-interleaved block: PartitionedConvolver allows in == out.
+void MultichannelConvolver::processChannel(long o, const float* in, float* out, long frames, float* scratch) {
+  const auto cin = static_cast<long>(input_channels_);
+  const auto cout = static_cast<long>(convolvers_.size());
+  const long c = source_[static_cast<size_t>(o)];
+  PartitionedConvolver& conv = *convolvers_[static_cast<size_t>(o)];
+  for (long start = 0; start < frames; start += block_) {
+    const long count = std::min<long>(block_, frames - start);
+    for (long f = 0; f < count; ++f) scratch[f] = in[(start + f) * cin + c];
+    conv.process(scratch, scratch, count);
+    for (long f = 0; f < count; ++f) out[(start + f) * cout + o] = scratch[f];
+  }
 }
 
 void MultichannelConvolver::process(const float* in, float* out, long frames) {
-  const auto cin = static_cast<long>(input_channels_);
-  const auto cout = static_cast<long>(convolvers_.size());
-  for (long start = 0; start < frames; start += block_) {
-    const long count = std::min<long>(block_, frames - start);
-    for (long o = 0; o < cout; ++o) {
-      const long c = source_[static_cast<size_t>(o)];
-      for (long f = 0; f < count; ++f) scratch_in_[static_cast<size_t>(f)] = in[(start + f) * cin + c];
-      convolvers_[static_cast<size_t>(o)]->process(scratch_in_.data(), scratch_out_.data(), count);
-      for (long f = 0; f < count; ++f) out[(start + f) * cout + o] = scratch_out_[static_cast<size_t>(f)];
-    }
-  }
+  for (long o = 0; o < static_cast<long>(convolvers_.size()); ++o) processChannel(o, in, out, frames, scratch_in_.data());
+}
+
+void MultichannelConvolver::processParallel(const float* in, float* out, long frames) {
+  tbb::parallel_for(0L, static_cast<long>(convolvers_.size()), [&](long o) {
+    processChannel(o, in, out, frames, channel_scratch_[static_cast<size_t>(o)].data());
+  });
 }
 
 void MultichannelConvolver::reset() {

@@ -41,5 +41,6 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common);
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
 Runner addDoorCommand(CLI::App& app, CommonOptions& common);
 Runner addSpectrogramCommand(CLI::App& app, CommonOptions& common);
+Runner addSignalCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

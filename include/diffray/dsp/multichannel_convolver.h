@@ -6,7 +6,7 @@
 //  * M = C: channel-wise, IR channel c on input channel c (C outputs; stereo IR on stereo input);
 //  * C = 1: the mono input through every IR channel (M outputs; e.g. a binaural or B-format IR);
 //  * any other pairing is refused (core::InputError).
-// Thread-safety: one object is used by one thread at a time.
+// Thread-safety: one object is used by one thread at a time (processParallel() fans out internally).
 #include <memory>
 #include <vector>
 
@@ -28,6 +28,12 @@ class MultichannelConvolver {
   /// output frames (outputChannels() samples each). `in` and `out` must not overlap. Allocation-free.
   void process(const float* in, float* out, long frames);
 
+  /// Offline: the same result as process() (bit for bit), with the output channels convolved concurrently
+  /// on TBB's thread pool (all cores unless a core::ThreadLimit is alive). Task scheduling may allocate
+  /// and block: not for a real-time callback. Call it with many blocks at once (e.g. 8·block frames) so
+  /// the threads' start-up is paid rarely.
+  void processParallel(const float* in, float* out, long frames);
+
   void reset();
 
   int inputChannels() const { return input_channels_; }
@@ -39,8 +45,11 @@ class MultichannelConvolver {
   int block_ = 0;
   std::vector<std::unique_ptr<PartitionedConvolver>> convolvers_;  ///< one per output channel
   std::vector<int> source_;               ///< input channel feeding output channel o
-  std::vector<float> scratch_in_;         ///< one block of one channel, de-interleaved
-  std::vector<float> scratch_out_;
+  std::vector<float> scratch_in_;         ///< one block of one channel, de-interleaved (process())
+  std::vector<std::vector<float>> channel_scratch_;  ///< processParallel: one block per output channel
+
+  /// Output channel o for frames [0, frames) through `scratch` (one block of room).
+  void processChannel(long o, const float* in, float* out, long frames, float* scratch);
 };
 
 }  // namespace diffray::dsp

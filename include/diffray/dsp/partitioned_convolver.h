@@ -9,7 +9,8 @@
 //    any n; each completed block costs one forward and one inverse FFT plus one complex multiply-add per
 //    partition, and a call ending mid-block costs one extra pair of FFTs (so call it with n a multiple of
 //    the block size when latency does not matter).
-//  * Precision: samples in and out are float; FFTs and accumulation are in double.
+//  * Precision: single-precision FFTW (fftw3f) and accumulation in float: twice the speed of double, and
+//    within 1e-6 of the output's peak against direct convolution in double (tests/dsp_convolver_test.cpp).
 //  * Real-time: process() and reset() allocate nothing, lock nothing and do no I/O; init() allocates and
 //    creates FFTW plans (under core::fftwPlannerMutex(), since FFTW planning is not thread-safe).
 // Thread-safety: one object is used by one thread at a time; distinct objects may run concurrently.
@@ -51,16 +52,16 @@ class PartitionedConvolver {
   int partitions_ = 0;
   int bins_ = 0;  ///< block_ + 1 (real FFT of length 2·block_)
   // FFTW buffers and plans (opaque here to keep fftw3.h out of the header).
-  double* fft_real_ = nullptr;      ///< 2·block_ samples
+  float* fft_real_ = nullptr;      ///< 2·block_ samples
   void* fft_complex_ = nullptr;     ///< bins_ complex values
   void* forward_plan_ = nullptr;
   void* inverse_plan_ = nullptr;
-  std::vector<std::complex<double>> ir_spectra_;     ///< partitions_ × bins_: partition k at k·bins_
-  std::vector<std::complex<double>> input_spectra_;  ///< delay line, partitions_ × bins_, ring buffer
-  std::vector<std::complex<double>> history_sum_;    ///< Σ_{k≥1} H_k·X_{b−k} for the current block b
-  std::vector<std::complex<double>> accumulator_;    ///< history_sum_ + H_0·X_b
-  std::vector<double> input_block_;                  ///< the current block's input so far (block_)
-  std::vector<double> overlap_;                      ///< second half of the previous block's result
+  std::vector<std::complex<float>> ir_spectra_;     ///< partitions_ × bins_: partition k at k·bins_
+  std::vector<std::complex<float>> input_spectra_;  ///< delay line, partitions_ × bins_, ring buffer
+  std::vector<std::complex<float>> history_sum_;    ///< Σ_{k≥1} H_k·X_{b−k} for the current block b
+  std::vector<std::complex<float>> accumulator_;    ///< history_sum_ + H_0·X_b
+  std::vector<float> input_block_;                   ///< the current block's input so far (block_)
+  std::vector<float> overlap_;                       ///< second half of the previous block's result
   int fill_ = 0;     ///< samples of the current block received
   int current_ = 0;  ///< ring index of the current block's spectrum in input_spectra_
 };
