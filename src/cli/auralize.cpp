@@ -7,6 +7,8 @@
 // is written to OUT.wav.unscaled.tmp.PID (float32, so nothing is lost) while its peak is measured, then read
 // back, scaled so the peak sits at −1 dBFS (then --gain on top) and written to OUT.wav; the temporary is
 // removed whatever happens. Outputs appear whole or not at all (audio::WavWriter).
+// --play plays the convolution in real time instead (or, with -o as well, after writing the file);
+// --list-devices lists the audio outputs (src/cli/auralize_play.cpp, include/diffray/cli/play.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
+#include "diffray/cli/play.h"
 #include "diffray/core/error.h"
 #include "diffray/dsp/multichannel_convolver.h"
 
@@ -32,6 +35,9 @@ struct AuralizeOptions {
   std::string out;
   double gain_db = 0.0;
   bool normalize = false;
+  bool play = false;
+  bool list_devices = false;
+  PlayOptions playback;
 };
 
 constexpr double kNormalizedPeakDbfs = -1.0;
@@ -106,13 +112,29 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   CLI::App* sub = app.add_subcommand(
       "auralize", "Convolve a dry recording with an impulse response (partitioned FFT convolution, streaming) "
                   "into a 32-bit float WAV that keeps the whole reverberant tail.");
-  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output")->required();
-  sub->add_option("--in", o->in, "dry signal (same sample rate as the IR)")->required();
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long")->required();
+  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output");
+  sub->add_option("--in", o->in, "dry signal (same sample rate as the IR)");
+  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)");
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output")->capture_default_str();
   sub->add_flag("--normalize", o->normalize,
                 "scale the output's peak to -1 dBFS (two passes through a temporary file; --gain applies on top)");
+  sub->add_flag("--play", o->play, "play the result in real time on an audio device (PortAudio)");
+  sub->add_option("--device", o->playback.device, "with --play: output device, by index or name substring "
+                                                   "(default: the system's default output)");
+  sub->add_option("--block", o->playback.block_frames,
+                  "with --play: audio block in frames (the latency: block / sample rate)")->capture_default_str();
+  sub->add_flag("--list-devices", o->list_devices, "list the audio output devices and exit");
   return [o]() {
+    if (o->list_devices) return listAudioDevices();
+    if (o->ir.empty()) throw core::InputError("auralize", "--ir IR.wav is required");
+    if (o->in.empty()) throw core::InputError("auralize", "--in DRY.wav is required");
+    if (o->out.empty() && !o->play) throw core::InputError("auralize", "give -o WET.wav, --play, or both");
+    if (!o->play && !o->playback.device.empty()) throw core::InputError("--device", "only applies with --play");
+    o->playback.ir = o->ir;
+    o->playback.in = o->in;
+    o->playback.gain_db = o->gain_db;
+    if (o->out.empty()) return playAuralization(o->playback);
+    if (o->play) requireOutputDevice(o->playback.device);  // before writing: no file and then an error
     core::requireFinite("--gain", o->gain_db);
     checkOutputPath(*o);
     audio::AudioReader dry(o->in);
@@ -161,7 +183,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     std::cout << "wrote " << o->out << ": " << frames << " frames x " << conv.outputChannels() << " channel"
               << (conv.outputChannels() > 1 ? "s" : "") << " at " << rate << " Hz (input " << dry.frames()
               << " + IR " << ir.frames() << " - 1), gain " << applied_db << " dB, peak " << dbfs(peak) << " dBFS\n";
-    return 0;
+    return o->play ? playAuralization(o->playback) : 0;
   };
 }
 

@@ -7,7 +7,8 @@
 
 namespace diffray::dsp {
 
-int MultichannelConvolver::outputChannels(int ir_channels, int input_channels) {
+template <class Engine>
+int BasicMultichannelConvolver<Engine>::outputChannels(int ir_channels, int input_channels) {
   if (ir_channels < 1 || input_channels < 1)
     throw core::InputError("convolver", "the impulse response and the input need at least one channel each");
   if (ir_channels == 1 || ir_channels == input_channels) return input_channels;
@@ -17,7 +18,8 @@ int MultichannelConvolver::outputChannels(int ir_channels, int input_channels) {
                                           "-channel input (a mono IR, a mono input, or equal channel counts)");
 }
 
-void MultichannelConvolver::init(int block_size, const std::vector<std::vector<float>>& ir, int input_channels) {
+template <class Engine>
+void BasicMultichannelConvolver<Engine>::init(int block_size, const std::vector<std::vector<float>>& ir, int input_channels) {
   const int ir_channels = static_cast<int>(ir.size());
   const int outputs = outputChannels(ir_channels, input_channels);
   for (const auto& channel : ir)
@@ -26,7 +28,7 @@ void MultichannelConvolver::init(int block_size, const std::vector<std::vector<f
   convolvers_.clear();
   source_.clear();
   for (int o = 0; o < outputs; ++o) {
-    convolvers_.push_back(std::make_unique<PartitionedConvolver>());
+    convolvers_.push_back(std::make_unique<Engine>());
     convolvers_.back()->init(block_size, ir[static_cast<size_t>(ir_channels == 1 ? 0 : o)]);
     source_.push_back(input_channels == 1 ? 0 : o);
   }
@@ -36,7 +38,8 @@ void MultichannelConvolver::init(int block_size, const std::vector<std::vector<f
   scratch_out_.assign(static_cast<size_t>(block_size), 0.0f);
 }
 
-void MultichannelConvolver::process(const float* in, float* out, long frames) {
+template <class Engine>
+void BasicMultichannelConvolver<Engine>::process(const float* in, float* out, long frames) {
   const auto cin = static_cast<long>(input_channels_);
   const auto cout = static_cast<long>(convolvers_.size());
   for (long start = 0; start < frames; start += block_) {
@@ -50,8 +53,12 @@ void MultichannelConvolver::process(const float* in, float* out, long frames) {
   }
 }
 
-void MultichannelConvolver::reset() {
+template <class Engine>
+void BasicMultichannelConvolver<Engine>::reset() {
   for (auto& c : convolvers_) c->reset();
 }
+
+template class BasicMultichannelConvolver<PartitionedConvolver>;
+template class BasicMultichannelConvolver<NonUniformConvolver>;
 
 }  // namespace diffray::dsp
