@@ -246,6 +246,25 @@ assert len(y) == 3 and all(abs(a - e) < 1e-6 for a, e in zip(y, (p, p, p / 4))),
 PY
   echo "FAIL: auralize: good run did not write [1, 1, 0.25] normalized"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# auralize --play / --list-devices: --list-devices always exits 0 (listing none is not an error); a device
+# that does not exist is one line and exit 2; with no device at all (CI), --play is one line and exit 2, and
+# with -o as well no WAV is written before the error.
+if "$bin" auralize --list-devices >"$tmp/devices" 2>"$tmp/stderr" && [ ! -s "$tmp/stderr" ] && [ -s "$tmp/devices" ]; then
+  passes=$((passes + 1)); else echo "FAIL: auralize --list-devices (exit!=0 or stderr noise)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+expect_auralize_error "--device index that does not exist" --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --device 9999
+expect_auralize_error "--device name that does not exist"  --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --device no-such-card-xyz
+expect_auralize_error "--device without --play"            --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --device 0
+expect_auralize_error "neither -o nor --play"              --ir "$tmp/ok.wav" --in "$tmp/ok.wav"
+expect_auralize_error "--play with a tiny --block"         --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --block 1
+if grep -q "no audio output devices" "$tmp/devices"; then
+  expect_auralize_error "--play without an audio device"      --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play
+  expect_auralize_error "--play and -o without an audio device" --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play -o "$tmp/wet.wav"
+  "$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play >/dev/null 2>"$tmp/stderr"
+  code=$?
+  if [ "$code" -eq 2 ] && grep -q "no audio output device" "$tmp/stderr"; then passes=$((passes + 1)); else
+    echo "FAIL: auralize --play without a device: exit=$code"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

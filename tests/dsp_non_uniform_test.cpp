@@ -38,13 +38,15 @@ std::vector<float> runInRandomCalls(NonUniformConvolver& conv, const std::vector
 TEST(NonUniformConvolver, StagesGrowByEightFromTheBlock) {
   NonUniformConvolver conv;
   conv.init(256, std::vector<float>(3 * 48000, 0.5f));
-  ASSERT_EQ(conv.stages(), 3);  // 256, 2048, 16384; 131072 exceeds kMaxTailBlock
+  ASSERT_EQ(conv.stages(), 2);  // 256, 2048; 16384 exceeds kMaxTailBlock
   EXPECT_EQ(conv.stageBlockSize(0), 256);
   EXPECT_EQ(conv.stageBlockSize(1), 2048);
-  EXPECT_EQ(conv.stageBlockSize(2), 16384);
+  conv.init(16, std::vector<float>(9000, 0.5f));
+  ASSERT_EQ(conv.stages(), 4);  // 16, 128, 1024, 8192
+  EXPECT_EQ(conv.stageBlockSize(3), 8192);
   conv.init(256, std::vector<float>(2048, 0.5f));  // fits the head: no tail
   EXPECT_EQ(conv.stages(), 1);
-  conv.init(4096, std::vector<float>(100000, 0.5f));  // 8·4096 > kMaxTailBlock: uniform
+  conv.init(2048, std::vector<float>(100000, 0.5f));  // 8·2048 > kMaxTailBlock: uniform
   EXPECT_EQ(conv.stages(), 1);
 }
 
