@@ -5,6 +5,8 @@
 //   room:        the acoustic tracer vs a plain rtcIntersect1 loop on each shipped room (room_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
+//   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
+//                block's duration (realtime_bench.cpp).
 #include <embree3/rtcore.h>
 #include <tbb/parallel_reduce.h>
 
@@ -14,6 +16,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "realtime_bench.h"
 #include "room_bench.h"
 
 #include "diffray/core/parallel.h"
@@ -195,6 +198,7 @@ int main(int argc, char** argv) {
       benchConvergence("slit-fraunhofer", false);
       benchConvergence("slit-fraunhofer", true);
     }
+    if (which == "all" || which == "realtime") bench::benchRealtime(20.0);
   } catch (const std::exception& e) {
     std::cerr << "diffray_bench: " << e.what() << "\n";
     return 1;

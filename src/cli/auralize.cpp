@@ -10,6 +10,8 @@
 // is written to OUT.wav.unscaled.tmp.PID (float32, so nothing is lost) while its peak is measured, then read
 // back, scaled so the peak sits at −1 dBFS (then --gain on top) and written to OUT.wav; the temporary is
 // removed whatever happens. Outputs appear whole or not at all (audio::WavWriter).
+// --play plays the convolution in real time instead (or, with -o as well, after writing the file);
+// --list-devices lists the audio outputs (src/cli/auralize_play.cpp, include/diffray/cli/play.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +24,7 @@
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
+#include "diffray/cli/play.h"
 #include "diffray/core/error.h"
 #include "diffray/dsp/multichannel_convolver.h"
 #include "diffray/dsp/resample.h"
@@ -37,6 +40,9 @@ struct AuralizeOptions {
   double gain_db = 0.0;
   bool normalize = false;
   bool no_resample = false;
+  bool play = false;
+  bool list_devices = false;
+  PlayOptions playback;
 };
 
 constexpr double kNormalizedPeakDbfs = -1.0;
@@ -111,15 +117,17 @@ void scaleInto(audio::AudioReader& from, float gain, audio::WavWriter& writer) {
   }
 }
 
-/// The IR's channels at the dry signal's rate: as read when the rates agree, else resampled as a filter (or
-/// refused under --no-resample).
-std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const AuralizeOptions& o) {
+
+}  // namespace
+
+std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const std::string& ir_path,
+                                         bool no_resample) {
   std::vector<float> h(ir.samples.begin(), ir.samples.end());
   if (ir.sample_rate_hz != rate_hz) {
     const std::string ir_hz = std::to_string(static_cast<long>(ir.sample_rate_hz)) + " Hz";
     const std::string in_hz = std::to_string(static_cast<long>(rate_hz)) + " Hz";
-    if (o.no_resample)
-      throw core::InputError(o.ir, "sample rate " + ir_hz + " differs from the input's " + in_hz +
+    if (no_resample)
+      throw core::InputError(ir_path, "sample rate " + ir_hz + " differs from the input's " + in_hz +
                                        " (--no-resample: resample one of them first, or drop the flag)");
     h = dsp::resampleImpulseResponse(h, ir.channels, ir.sample_rate_hz, rate_hz);
     std::cout << "resampled the impulse response from " << ir_hz << " to the input's " << in_hz << " (libsamplerate, best sinc; "
@@ -134,27 +142,42 @@ std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double ra
   return channels;
 }
 
-}  // namespace
-
 Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   auto o = std::make_shared<AuralizeOptions>();
   CLI::App* sub = app.add_subcommand(
       "auralize", "Convolve a dry recording with an impulse response (partitioned FFT convolution, streaming) "
                   "into a 32-bit float WAV that keeps the whole reverberant tail.");
-  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output")->required();
-  sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)")->required();
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long")->required();
+  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output");
+  sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)");
+  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)");
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output")->capture_default_str();
   sub->add_flag("--normalize", o->normalize,
                 "scale the output's peak to -1 dBFS (two passes through a temporary file; --gain applies on top)");
   sub->add_flag("--no-resample", o->no_resample,
                 "refuse an IR whose sample rate differs from the input's instead of resampling it");
+  sub->add_flag("--play", o->play, "play the result in real time on an audio device (PortAudio)");
+  sub->add_option("--device", o->playback.device, "with --play: output device, by index or name substring "
+                                                   "(default: the system's default output)");
+  sub->add_option("--block", o->playback.block_frames,
+                  "with --play: audio block in frames (the latency: block / sample rate)")->capture_default_str();
+  sub->add_flag("--list-devices", o->list_devices, "list the audio output devices and exit");
   return [o]() {
+    if (o->list_devices) return listAudioDevices();
+    if (o->ir.empty()) throw core::InputError("auralize", "--ir IR.wav is required");
+    if (o->in.empty()) throw core::InputError("auralize", "--in DRY.wav is required");
+    if (o->out.empty() && !o->play) throw core::InputError("auralize", "give -o WET.wav, --play, or both");
+    if (!o->play && !o->playback.device.empty()) throw core::InputError("--device", "only applies with --play");
+    o->playback.ir = o->ir;
+    o->playback.in = o->in;
+    o->playback.gain_db = o->gain_db;
+    o->playback.no_resample = o->no_resample;
+    if (o->out.empty()) return playAuralization(o->playback);
+    if (o->play) requireOutputDevice(o->playback.device);  // before writing: no file and then an error
     core::requireFinite("--gain", o->gain_db);
     checkOutputPath(*o);
     audio::AudioReader dry(o->in);
     const audio::AudioBuffer ir = audio::readAudio(o->ir);
-    const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), *o);
+    const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample);
     const long ir_frames = static_cast<long>(ir_channels.front().size());
     const int block = blockFor(ir_frames);
     dsp::MultichannelConvolver conv;
@@ -190,7 +213,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     std::cout << "wrote " << o->out << ": " << frames << " frames x " << conv.outputChannels() << " channel"
               << (conv.outputChannels() > 1 ? "s" : "") << " at " << rate << " Hz (input " << dry.frames()
               << " + IR " << ir_frames << " - 1), gain " << applied_db << " dB, peak " << dbfs(peak) << " dBFS\n";
-    return 0;
+    return o->play ? playAuralization(o->playback) : 0;
   };
 }
 

@@ -1,7 +1,8 @@
 // `diffray door ROOM.json --in DRY.wav -o OUT.wav --close START:END [--steps K] [--diffraction wbsdf|utd|none]`:
 // the sound of a door closing (issue 4/5, item 3). A sliding panel narrows the room's door from open (START)
 // to shut (END); the room is traced at K gaps (door/closing.h), each response is synthesized at the dry
-// signal's sample rate (the same seed for every step, so that neighbouring IRs differ by the door only), and
+// signal's sample rate (or at the room's and resampled, when the room's bands reach past the dry signal's
+// Nyquist frequency; the same seed for every step, so that neighbouring IRs differ by the door only), and
 // the dry signal is convolved through them with crossfades between their key times
 // (dsp::CrossfadeConvolver), streaming. The room's sources play the dry signal (a multichannel one is mixed
 // down to mono); OUT.wav has one channel per listener (or the one --listener names). Beside it: OUT.png, the
@@ -29,6 +30,7 @@
 #include "diffray/door/closing.h"
 #include "diffray/door/sliding_panel.h"
 #include "diffray/dsp/crossfade_convolver.h"
+#include "diffray/dsp/resample.h"
 #include "diffray/dsp/spectrogram.h"
 #include "diffray/ir/synthesis.h"
 #include "diffray/room/scene_file.h"
@@ -160,9 +162,19 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     if (chosen.empty()) throw core::InputError("--listener", "the room has no listener named \"" + opts->listener + "\"");
     const std::string png = opts->spectrogram.empty() ? withExtension(opts->out, ".png") : opts->spectrogram;
     checkOutputs(*opts, png);
+    {  // One pass through the dry signal before the (long) tracing: a NaN in it is an error now, not later.
+      audio::AudioReader scan(opts->in);
+      std::vector<float> buffer(static_cast<std::size_t>(kBlock) * scan.channels());
+      while (scan.read(buffer.data(), kBlock) > 0) {
+      }
+    }
     audio::AudioReader reader(opts->in);
     const double fs = reader.sampleRateHz();
-    checkSynthesis(room, 0.0, fs, opts->in + ": sample rate");
+    // The IRs are synthesized at the dry signal's rate when the room's bands fit below its Nyquist frequency,
+    // else at the room's own rate and resampled (as filters) to the dry signal's.
+    const bool fits = room.bands.upperHz(room.bands.size() - 1) < 0.5 * fs;
+    const double synth_fs = fits ? fs : room.output.sample_rate_hz;
+    checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
     if (end_s > static_cast<double>(reader.frames()) / fs)
       warnings.push_back("the door is still closing when " + opts->in + " ends (at " +
                          std::to_string(static_cast<double>(reader.frames()) / fs) + " s); the output's tail is the "
@@ -194,9 +206,10 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       keys.push_back(std::lround(schedule[k].time_s * fs));
       nlohmann::ordered_json levels = nlohmann::ordered_json::object();
       for (int l : chosen) {
-        const std::vector<double> h = ir::synthesize(cr.responses[k][l], fs, cr.length_s, cr.volume_m3,
+        const std::vector<double> h = ir::synthesize(cr.responses[k][l], synth_fs, cr.length_s, cr.volume_m3,
                                                      cr.speed_of_sound_m_s, common.seed + 7919ull * l);
         irs[k].emplace_back(h.begin(), h.end());
+        if (synth_fs != fs) irs[k].back() = dsp::resampleImpulseResponse(irs[k].back(), 1, synth_fs, fs);
         const core::BandArray e = door::bandEnergies(cr.responses[k][l]), e0 = door::bandEnergies(cr.responses[0][l]);
         nlohmann::ordered_json row = nlohmann::ordered_json::array();
         csv << k << ',' << schedule[k].time_s << ',' << schedule[k].gap_m << ',' << room.listeners[l].name;
@@ -211,6 +224,9 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       steps.push_back({{"time_s", schedule[k].time_s}, {"gap_m", schedule[k].gap_m}, {"level_re_open_db", levels}});
     }
 
+    if (synth_fs != fs)
+      std::cout << "synthesized the impulse responses at " << synth_fs << " Hz (the room's bands reach past the dry "
+                << "signal's Nyquist frequency) and resampled them to its " << fs << " Hz (libsamplerate)\n";
     // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
     const std::vector<float> first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), opts->out);
     const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
@@ -266,13 +282,24 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
                 "gap_m");
     for (int b = 0; b < room.bands.size(); ++b) std::printf(" %7s", room.bands.label(b).c_str());
     std::printf("\n");
+    bool signed_noise = false;
     for (std::size_t k = 0; k < schedule.size(); ++k) {
       std::printf("%8.3f %8.4f", schedule[k].time_s, schedule[k].gap_m);
       const core::BandArray e = door::bandEnergies(cr.responses[k][chosen[0]]);
       const core::BandArray e0 = door::bandEnergies(cr.responses[0][chosen[0]]);
-      for (int b = 0; b < room.bands.size(); ++b) std::printf(" %7.1f", toDb(e[b] / e0[b]));
+      for (int b = 0; b < room.bands.size(); ++b) {
+        const double db = toDb(e[b] / e0[b]);
+        if (std::isfinite(db)) {
+          std::printf(" %7.1f", db);
+        } else {
+          std::printf(" %7s", "-");
+          signed_noise = true;
+        }
+      }
       std::printf("\n");
     }
+    if (signed_noise)
+      std::printf("-: the band's signed energy summed to <= 0 at this gap (WBSDF noise: use more --rays)\n");
     return 0;
   };
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "diffray/core/error.h"
 #include "diffray/door/sliding_panel.h"
@@ -68,14 +67,14 @@ ClosingResponse simulateClosing(const room::Room& room, int door, const std::vec
     traced_panel = base.addMaterial(reflector);
   }
   withSlidingPanel(base, door, 0.0, traced_panel);  // refuses a door with no panel before any tracing
-  std::set<std::string> seen;
   std::vector<ir::EnergyResponse> open;
   for (std::size_t k = 0; k < schedule.size(); ++k) {
     const room::Room r = withSlidingPanel(base, door, schedule[k].gap_m, traced_panel);
     transport::RoomSimulationOptions so;
     so.rays = options.rays;
     so.seed = options.seed;
-    so.diffraction = options.diffraction;
+    // Shut, the door is no occluder any more: nothing is left to diffract (and nothing to warn about).
+    so.diffraction = options.diffraction == "wbsdf" && r.occluders.empty() ? "none" : options.diffraction;
     so.max_diffractions = options.max_diffractions;
     so.length_s = k == 0 ? options.length_s : out.length_s;
     so.on_progress = options.on_progress;
@@ -85,8 +84,7 @@ ClosingResponse simulateClosing(const room::Room& room, int door, const std::vec
       out.speed_of_sound_m_s = sim.speed_of_sound_m_s;
       open = sim.listeners;
     }
-    for (const std::string& w : sim.warnings)
-      if (seen.insert(w).second) out.warnings.push_back(w);
+    if (k == 0) out.warnings = sim.warnings;
     const double covered = 1.0 - schedule[k].gap_m / out.width_m;
     if (covered > 0.0) {
       core::BandArray factor = core::bandFill(0.0);

@@ -54,7 +54,9 @@ struct ClosingResponse {
   double speed_of_sound_m_s = 0.0;
   core::BandArray panel_transmission = core::bandFill(0.0);
   std::string panel_name;
-  std::vector<std::string> warnings;  ///< the simulations', each once
+  /// The open door's simulation's warnings. The later steps' are left out: the same room gives the same ones,
+  /// except that a far-side listener reached by few rays as the gap narrows is what closing the door means.
+  std::vector<std::string> warnings;
 };
 
 /// Traces the room of door `door` (door::findDoor) at every step of `schedule`.

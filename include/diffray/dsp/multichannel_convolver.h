@@ -1,6 +1,10 @@
 #pragma once
-// MultichannelConvolver: interleaved multichannel convolution built from one PartitionedConvolver per
+// MultichannelConvolver: interleaved multichannel convolution built from one single-channel engine per
 // output channel (same contract: init / process / reset, zero latency, nothing allocated in process()).
+// The engine is a template parameter: MultichannelConvolver uses PartitionedConvolver (uniform partitions,
+// for offline work), NonUniformMultichannelConvolver uses NonUniformConvolver (real-time playback). Both are
+// instantiated in multichannel_convolver.cpp; an Engine offers init(int, const std::vector<float>&),
+// process(const float*, float*, long), reset() and irLength().
 // How an M-channel impulse response meets a C-channel input (outputChannels()):
 //  * M = 1: the one IR is applied to every input channel (C outputs);
 //  * M = C: channel-wise, IR channel c on input channel c (C outputs; stereo IR on stereo input);
@@ -10,11 +14,13 @@
 #include <memory>
 #include <vector>
 
+#include "diffray/dsp/non_uniform_convolver.h"
 #include "diffray/dsp/partitioned_convolver.h"
 
 namespace diffray::dsp {
 
-class MultichannelConvolver {
+template <class Engine>
+class BasicMultichannelConvolver {
  public:
   /// Output channel count for an `ir_channels`-channel IR on an `input_channels`-channel input; throws
   /// core::InputError for a pairing the rules above do not cover.
@@ -43,7 +49,7 @@ class MultichannelConvolver {
  private:
   int input_channels_ = 0;
   int block_ = 0;
-  std::vector<std::unique_ptr<PartitionedConvolver>> convolvers_;  ///< one per output channel
+  std::vector<std::unique_ptr<Engine>> convolvers_;  ///< one per output channel
   std::vector<int> source_;               ///< input channel feeding output channel o
   std::vector<float> scratch_in_;         ///< one block of one channel, de-interleaved (process())
   std::vector<std::vector<float>> channel_scratch_;  ///< processParallel: one block per output channel
@@ -51,5 +57,10 @@ class MultichannelConvolver {
   /// Output channel o for frames [0, frames) through `scratch` (one block of room).
   void processChannel(long o, const float* in, float* out, long frames, float* scratch);
 };
+
+using MultichannelConvolver = BasicMultichannelConvolver<PartitionedConvolver>;
+using NonUniformMultichannelConvolver = BasicMultichannelConvolver<NonUniformConvolver>;
+extern template class BasicMultichannelConvolver<PartitionedConvolver>;
+extern template class BasicMultichannelConvolver<NonUniformConvolver>;
 
 }  // namespace diffray::dsp

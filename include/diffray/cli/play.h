@@ -1,0 +1,37 @@
+#pragma once
+// `diffray auralize --play` and `--list-devices` (src/cli/auralize_play.cpp): real-time playback of a dry
+// file convolved with an impulse response through PortAudio (audio/portaudio_output.h). With no audio
+// output device (CI, a headless server) both end with one line: --play exits 2 ("no audio output
+// device …; write a file with -o instead"), --list-devices says none were found and exits 0.
+#include <string>
+#include <vector>
+
+#include "diffray/audio/wav.h"
+
+namespace diffray::cli {
+
+struct PlayOptions {
+  std::string ir;
+  std::string in;
+  std::string device;     ///< index or name substring; empty: the default output device
+  int block_frames = 256; ///< the audio callback's buffer = the convolver's head block (the latency)
+  double gain_db = 0.0;
+  bool no_resample = false;  ///< refuse an IR at another rate than the dry signal's instead of resampling it
+};
+
+/// The IR's channels at the dry signal's rate `rate_hz`: as read when the rates agree, else resampled as a
+/// filter (dsp::resampleImpulseResponse) with one info line on stdout, or refused (core::InputError naming
+/// `ir_path`) when `no_resample`. Defined in src/cli/auralize.cpp.
+std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const std::string& ir_path,
+                                         bool no_resample);
+
+/// Prints the output devices (index, name, host API, channels, default rate, default latency) on stdout;
+/// returns the exit code (0).
+int listAudioDevices();
+/// Throws core::InputError unless `device` (as for --device) names an available output device.
+void requireOutputDevice(const std::string& device);
+/// Plays the convolution until it ends or Ctrl-C; returns the exit code (0, or 130 after Ctrl-C).
+/// Throws core::InputError for bad files, options or no device.
+int playAuralization(const PlayOptions& options);
+
+}  // namespace diffray::cli

@@ -1,0 +1,91 @@
+// `diffray auralize --ir IR.wav --in DRY.wav --play [--device N|NAME] [--block FRAMES] [--gain DB]` and
+// `diffray auralize --list-devices`: see include/diffray/cli/play.h. The dry file is streamed by a reader
+// thread (audio::DryFileStreamer) into a lock-free ring that the PortAudio callback drains through the
+// non-uniform convolver (audio::PlaybackRenderer); the ring is half filled before the stream starts. The
+// latency added by the convolution is zero; the device's buffer adds one block (block / rate seconds) plus
+// whatever the host API adds (printed as PortAudio reports it). Ctrl-C sets an atomic flag that the
+// polling loop sees within 20 ms; the stream is aborted, the reader stopped, and the exit code is 130.
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include "diffray/audio/playback.h"
+#include "diffray/audio/portaudio_output.h"
+#include "diffray/audio/wav.h"
+#include "diffray/cli/play.h"
+#include "diffray/core/error.h"
+
+namespace diffray::cli {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT handler stores to an atomic<bool>");
+
+extern "C" void onInterrupt(int /*signal*/) { g_interrupted.store(true); }
+
+/// Installs the SIGINT handler for its lifetime.
+struct InterruptGuard {
+  using Handler = void (*)(int);
+  Handler previous;
+  InterruptGuard() : previous(std::signal(SIGINT, onInterrupt)) { g_interrupted.store(false); }
+  ~InterruptGuard() { std::signal(SIGINT, previous == SIG_ERR ? SIG_DFL : previous); }
+};
+
+}  // namespace
+
+int listAudioDevices() {
+  audio::PortAudioSession session;
+  const auto devices = session.outputDevices();
+  if (devices.empty()) {
+    std::cout << "no audio output devices found (PortAudio found none)\n";
+    return 0;
+  }
+  for (const auto& d : devices)
+    std::printf("%3d%s %s [%s] %d ch, default %.0f Hz, low latency %.1f ms\n", d.index, d.is_default ? "*" : " ",
+                d.name.c_str(), d.host_api.c_str(), d.max_output_channels, d.default_sample_rate_hz,
+                1e3 * d.default_low_latency_s);
+  std::cout << "(* the default output device)\n";
+  return 0;
+}
+
+void requireOutputDevice(const std::string& device) {
+  audio::PortAudioSession session;
+  session.chooseOutputDevice(device);
+}
+
+int playAuralization(const PlayOptions& o) {
+  core::requireFinite("--gain", o.gain_db);
+  if (o.block_frames < 16 || o.block_frames > 16384)
+    throw core::InputError("--block", "must lie between 16 and 16384 frames, got " + std::to_string(o.block_frames));
+  audio::AudioReader dry(o.in);
+  const audio::AudioBuffer ir = audio::readAudio(o.ir);
+  const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);
+  audio::PortAudioSession session;
+  const audio::OutputDevice device = session.chooseOutputDevice(o.device);
+
+  audio::PlaybackConfig config;
+  config.block_frames = o.block_frames;
+  config.gain_db = o.gain_db;
+  config.ring_frames = std::max<long>(1L << 16, 8L * o.block_frames);
+  audio::PlaybackRenderer renderer(ir_channels, dry.channels(), config);
+  const double rate = dry.sampleRateHz();
+  std::cout << "playing " << o.in << " * " << o.ir << " on " << device.name << ": " << renderer.outputChannels()
+            << " channel(s) at " << rate << " Hz, block " << o.block_frames << " frames = "
+            << 1e3 * o.block_frames / rate << " ms, " << renderer.convolver().irLength() << " IR frames; Ctrl-C stops"
+            << std::endl;
+  InterruptGuard guard;
+  audio::DryFileStreamer streamer(dry, renderer);
+  streamer.waitForPrefill(renderer.ringFrames() / 2);
+  const audio::PlaybackReport report = session.play(renderer, device, rate, g_interrupted);
+  streamer.stop();
+  streamer.wait();
+  std::cout << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()
+            << " frames, device output latency " << 1e3 * report.output_latency_s << " ms, underruns "
+            << renderer.underruns() << " (" << renderer.underrunFrames() << " dry frames missed)\n";
+  return report.interrupted ? 130 : 0;
+}
+
+}  // namespace diffray::cli
