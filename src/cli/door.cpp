@@ -2,7 +2,8 @@
 // the sound of a door closing (issue 4/5, item 3). A sliding panel narrows the room's door from open (START)
 // to shut (END); the room is traced at K gaps (door/closing.h), each response is synthesized at the dry
 // signal's sample rate (or at the room's and resampled, when the room's bands reach past the dry signal's
-// Nyquist frequency; the same seed for every step, so that neighbouring IRs differ by the door only), and
+// Nyquist frequency; the same seed and coherent phasing, ir/synthesis.h, for every step, so that neighbouring
+// IRs differ by the door only and a crossfade between them cancels nothing), and
 // the dry signal is convolved through them with crossfades between their key times
 // (dsp::CrossfadeConvolver), streaming. The room's sources play the dry signal (a multichannel one is mixed
 // down to mono); OUT.wav has one channel per listener (or the one --listener names). Beside it: OUT.png, the
@@ -204,14 +205,17 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     csv << '\n' << std::setprecision(6);
     for (std::size_t k = 0; k < schedule.size(); ++k) {
       keys.push_back(std::lround(schedule[k].time_s * fs));
-      nlohmann::ordered_json levels = nlohmann::ordered_json::object();
+      nlohmann::ordered_json levels = nlohmann::ordered_json::object(), energies = nlohmann::ordered_json::object();
       for (int l : chosen) {
         const std::vector<double> h = ir::synthesize(cr.responses[k][l], synth_fs, cr.length_s, cr.volume_m3,
-                                                     cr.speed_of_sound_m_s, common.seed + 7919ull * l);
+                                                     cr.speed_of_sound_m_s, common.seed + 7919ull * l,
+                                                     ir::Phasing::Coherent);
         irs[k].emplace_back(h.begin(), h.end());
         if (synth_fs != fs) irs[k].back() = dsp::resampleImpulseResponse(irs[k].back(), 1, synth_fs, fs);
         const core::BandArray e = door::bandEnergies(cr.responses[k][l]), e0 = door::bandEnergies(cr.responses[0][l]);
-        nlohmann::ordered_json row = nlohmann::ordered_json::array();
+        nlohmann::ordered_json row = nlohmann::ordered_json::array(), absolute = nlohmann::ordered_json::array();
+        for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(e[b]);
+        energies[room.listeners[l].name] = absolute;
         csv << k << ',' << schedule[k].time_s << ',' << schedule[k].gap_m << ',' << room.listeners[l].name;
         for (int b = 0; b < room.bands.size(); ++b) {
           const double db = toDb(e[b] / e0[b]);
@@ -221,7 +225,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
         csv << '\n';
         levels[room.listeners[l].name] = row;
       }
-      steps.push_back({{"time_s", schedule[k].time_s}, {"gap_m", schedule[k].gap_m}, {"level_re_open_db", levels}});
+      steps.push_back({{"time_s", schedule[k].time_s}, {"gap_m", schedule[k].gap_m}, {"level_re_open_db", levels},
+                       {"energy_j_m2", energies}});
     }
 
     if (synth_fs != fs)

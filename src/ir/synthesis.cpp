@@ -161,7 +161,8 @@ std::complex<double> innerProduct(const BandSpectrum& u, const BandSpectrum& v) 
 /// or empty), phased within each band so that their energies add: the earliest arrival as it is, the
 /// traced part rotated to be orthogonal to it, every later arrival orthogonal to all before it.
 std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, RealFft& fft,
-                            std::vector<BandSpectrum> traced, long samples) {
+                            std::vector<BandSpectrum> traced, long samples, Phasing phasing) {
+  const bool orthogonal = phasing == Phasing::Orthogonal;
   const double fs = filter.sampleRateHz();
   const int m = fft.size();
   const double length_s = static_cast<double>(samples) / fs;
@@ -207,13 +208,14 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
       // Re(e^{−iφ}·⟨u, reference⟩) = 0, so that band energies add as the energy model says (synthesis.h).
       // The earliest arrival (the direct sound, when there is one) meets nothing and keeps phase 0, so
       // its broadband pulse stays sharp: the onset (time zero of every metric) is found on it.
-      const std::complex<double> rotation = orthogonalRotation(innerProduct(u, reference[b]));
+      const std::complex<double> rotation =
+          orthogonal ? orthogonalRotation(innerProduct(u, reference[b])) : std::complex<double>(1.0, 0.0);
       for (size_t j = 0; j < u.size(); ++j) {
         part[b][j] += rotation * u[j];
         reference[b][j] += rotation * u[j];
       }
     }
-    if (first) {
+    if (first && orthogonal) {
       // The traced part (all of its envelope kept: a rotation of the carrier) made orthogonal to it.
       for (size_t b = 0; b < traced.size(); ++b) {
         const std::complex<double> rotation = orthogonalRotation(innerProduct(traced[b], part[b]));
@@ -258,14 +260,14 @@ std::vector<double> poissonDiracs(long samples, double sample_rate_hz, double vo
 }
 
 std::vector<double> synthesize(const EnergyResponse& response, double sample_rate_hz, double length_s,
-                               double volume_m3, double speed_of_sound_m_s, std::uint64_t seed) {
+                               double volume_m3, double speed_of_sound_m_s, std::uint64_t seed, Phasing phasing) {
   checkInputs(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s);
   const long n = core::checkedCount("synthesis: samples", length_s * sample_rate_hz, 1u << 30);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(filter.fftLengthFor(n));
   std::vector<BandSpectrum> traced;
   if (!response.traced.empty()) traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n);
-  return combine(response, filter, fft, std::move(traced), n);
+  return combine(response, filter, fft, std::move(traced), n, phasing);
 }
 
 }  // namespace diffray::ir

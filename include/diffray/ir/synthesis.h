@@ -38,10 +38,19 @@
 
 namespace diffray::ir {
 
+/// How the arrivals and the traced part are phased within a band. Orthogonal: as above, so that band energies
+/// add exactly in one response. Coherent: every arrival at phase 0 and the traced part as drawn, so that band
+/// energies add on average only, but responses synthesized from similar energy responses with the same seed
+/// stay alike sample for sample: what crossfading between them needs (the closing door, door/closing.h). The
+/// orthogonal phases are picked per response, and of two responses that differ a little one may take the
+/// other of the two phases for a band's traced part, which a crossfade between them then cancels at mid-fade.
+enum class Phasing { Orthogonal, Coherent };
+
 /// The impulse response, length_s·sample_rate_hz samples. Throws core::InputError for a non-positive or
 /// non-finite sample rate, length, volume or speed of sound, or bands above the Nyquist frequency.
 std::vector<double> synthesize(const EnergyResponse& response, double sample_rate_hz, double length_s,
-                               double volume_m3, double speed_of_sound_m_s, std::uint64_t seed);
+                               double volume_m3, double speed_of_sound_m_s, std::uint64_t seed,
+                               Phasing phasing = Phasing::Orthogonal);
 
 /// The Poisson Dirac sequence alone (±1 at the sample of each event, events in one sample add up), for
 /// `samples` samples from emission: what synthesize() band-passes. Exposed for tests of its rate.
