@@ -8,20 +8,26 @@ trap 'rm -rf "$tmp"' EXIT
 fails=0
 passes=0
 
-expect_error() {  # expect_error DESCRIPTION ARGS...
-  local what="$1"; shift
-  local out="$tmp/out.csv"
-  rm -f "$out"
+# One bad-input run: "$bin" ARGS... must exit with a code in 1..127, print exactly one line on stderr (that
+# contains PATTERN, when PATTERN is not empty) and leave nothing matching GLOB in $tmp.
+expect_clean() {  # expect_clean LABEL GLOB PATTERN ARGS...
+  local label="$1" glob="$2" pattern="$3"; shift 3
+  rm -f "$tmp"/$glob
   "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   local code=$?
   local lines
   lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/out.csv* >/dev/null 2>&1; then
-    echo "FAIL: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
+  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/$glob >/dev/null 2>&1 ||
+     { [ -n "$pattern" ] && ! grep -qF -- "$pattern" "$tmp/stderr"; }; then
+    echo "FAIL: $label: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
     fails=$((fails + 1))
   else
     passes=$((passes + 1))
   fi
+}
+expect_error() {  # expect_error DESCRIPTION ARGS...
+  local what="$1"; shift
+  expect_clean "$what" "out.csv*" "" "$@"
 }
 
 csv="--csv=$tmp/out.csv"
@@ -64,19 +70,9 @@ expect_error "unknown band kind"      metrics "$tmp/ok.wav" --bands fifth
 expect_ir_error() {  # expect_ir_error DESCRIPTION ROOM_JSON_TEXT [ARGS...]
   local what="$1" text="$2"; shift 2
   printf '%s\n' "$text" >"$tmp/room.json"
-  rm -f "$tmp"/out.*
   local rays=(--rays 2000)
   case " $* " in *" --rays "*) rays=() ;; esac
-  "$bin" ir "$tmp/room.json" -o "$tmp/out.wav" "${rays[@]}" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/out.* >/dev/null 2>&1; then
-    echo "FAIL: ir: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "ir: $what" "out.*" "" ir "$tmp/room.json" -o "$tmp/out.wav" "${rays[@]}" "$@"
 }
 mat='"materials": {"w": {"absorption": 0.3, "scattering": 0.2}}'
 box='"geometry": [{"box": {"min": [0,0,0], "max": [4,3,2.5], "materials": {"all": "w"}}}]'
@@ -148,18 +144,7 @@ if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1
 rooms="$(cd "$(dirname "$0")/../rooms" && pwd)"
 expect_compare_error() {  # expect_compare_error DESCRIPTION PATTERN ARGS...: the line must contain PATTERN
   local what="$1" pattern="$2"; shift 2
-  rm -f "$tmp"/cmp.*
-  "$bin" compare "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/cmp.* >/dev/null 2>&1 ||
-     ! grep -qF -- "$pattern" "$tmp/stderr"; then
-    echo "FAIL: compare: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "compare: $what" "cmp.*" "$pattern" compare "$@"
 }
 fast=(--rays 1000 --fine-per-octave 2 --csv "$tmp/cmp.csv")
 expect_compare_error "missing scene file"   "cannot open" "$tmp/none.json" "${fast[@]}"
@@ -204,17 +189,7 @@ then passes=$((passes + 1)); else
 # diffray auralize: bad input gives one line and leaves no WAV (nor a temporary) behind.
 expect_auralize_error() {  # expect_auralize_error DESCRIPTION ARGS...
   local what="$1"; shift
-  rm -f "$tmp"/wet.*
-  "$bin" auralize "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/wet.* >/dev/null 2>&1; then
-    echo "FAIL: auralize: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "auralize: $what" "wet.*" "" auralize "$@"
 }
 # ok.wav at 44.1 kHz: the same two samples, another rate.
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x44\xac\x00\x00\x10\xb1\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok44.wav"
@@ -255,17 +230,7 @@ PY
 # diffray spectrogram: bad input gives one line and leaves no PNG (nor a temporary) behind.
 expect_spectrogram_error() {  # expect_spectrogram_error DESCRIPTION ARGS...
   local what="$1"; shift
-  rm -f "$tmp"/spec.*
-  "$bin" spectrogram "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/spec.* >/dev/null 2>&1; then
-    echo "FAIL: spectrogram: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "spectrogram: $what" "spec.*" "" spectrogram "$@"
 }
 expect_spectrogram_error "missing input file"    "$tmp/none.wav" -o "$tmp/spec.png"
 expect_spectrogram_error "text file named .wav"  "$tmp/text.wav" -o "$tmp/spec.png"
@@ -305,17 +270,7 @@ fi
 # diffray door: bad input gives one line before any tracing and leaves no output (WAV, PNG, JSON, CSV).
 expect_door_error() {  # expect_door_error DESCRIPTION ARGS...
   local what="$1"; shift
-  rm -f "$tmp"/door.*
-  "$bin" door "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/door.* >/dev/null 2>&1; then
-    echo "FAIL: door: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "door: $what" "door.*" "" door "$@"
 }
 # A 0.3 s dry noise burst at 48 kHz.
 python3 -c "
@@ -357,17 +312,7 @@ then passes=$((passes + 1)); else
 # diffray signal: bad options give one line and leave no WAV behind.
 expect_signal_error() {  # expect_signal_error DESCRIPTION ARGS...
   local what="$1"; shift
-  rm -f "$tmp"/sig.*
-  "$bin" signal "$@" >"$tmp/stdout" 2>"$tmp/stderr"
-  local code=$?
-  local lines
-  lines=$(wc -l <"$tmp/stderr")
-  if [ "$code" -ne 2 ] || [ "$lines" -ne 1 ] || ls "$tmp"/sig.* >/dev/null 2>&1; then
-    echo "FAIL: signal: $what: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
-    fails=$((fails + 1))
-  else
-    passes=$((passes + 1))
-  fi
+  expect_clean "signal: $what" "sig.*" "" signal "$@"
 }
 expect_signal_error "unknown kind"          noise -o "$tmp/sig.wav"
 expect_signal_error "negative duration"     sweep -o "$tmp/sig.wav" --duration -1
