@@ -25,6 +25,7 @@
 #include "diffray/audio/spsc_ring.h"
 #include "diffray/audio/test_backend.h"
 #include "diffray/audio/wav.h"
+#include "diffray/dsp/crossfade_convolver.h"
 #include "dsp_oracle.h"
 
 // ---- Counting global allocation functions: count only while the calling thread has set the flag. ----
@@ -256,6 +257,31 @@ TEST(RealtimeAllocation, CallbackAllocatesNothingAcrossTailStageBoundaries) {
   EXPECT_TRUE(renderer.finished());
   EXPECT_EQ(g_news.load(), 0) << "operator new inside the audio callback";
   EXPECT_EQ(g_deletes.load(), 0) << "operator delete inside the audio callback";
+}
+
+// The closing door's time-varying convolver (dsp/crossfade_convolver.h) promises the same: process() and
+// flush() allocate nothing, over calls that start and stop convolvers at every key frame.
+TEST(RealtimeAllocation, CrossfadeConvolverAllocatesNothingAcrossKeyFrames) {
+  std::mt19937 rng(78);
+  std::vector<std::vector<std::vector<float>>> irs;
+  for (long length : {3000L, 5000L, 4000L}) irs.push_back({uniformNoise(rng, length), uniformNoise(rng, length)});
+  dsp::CrossfadeConvolver conv;
+  conv.init(256, irs, 1, {2000, 6000, 9000});
+  const std::vector<float> in = uniformNoise(rng, 100);
+  std::vector<float> out(200);
+  g_news = 0;
+  g_deletes = 0;
+  int most_active = 0;
+  startCounting(nullptr);
+  for (int call = 0; call < 200; ++call) {  // 20000 frames: past the last key frame and every IR's span
+    conv.process(in.data(), out.data(), 100);
+    most_active = std::max(most_active, conv.activeConvolvers());
+  }
+  for (long left = conv.tailFrames(); left > 0; left -= 100) conv.flush(out.data(), std::min<long>(left, 100));
+  stopCounting(nullptr);
+  EXPECT_GE(most_active, 2);
+  EXPECT_EQ(g_news.load(), 0) << "operator new in CrossfadeConvolver::process/flush";
+  EXPECT_EQ(g_deletes.load(), 0) << "operator delete in CrossfadeConvolver::process/flush";
 }
 
 }  // namespace
