@@ -69,8 +69,7 @@ struct RemoveOnExit {
 
 void checkOutputPath(const AuralizeOptions& o) {
   namespace fs = std::filesystem;
-  if (fs::path(o.out).extension() != ".wav") throw core::InputError(o.out, "the output must be a .wav file");
-  if (!fs::is_directory(fs::absolute(o.out).parent_path())) throw core::InputError(o.out, "its folder does not exist");
+  checkOutputFile(o.out, ".wav");
   std::error_code ec;
   for (const std::string& input : {o.ir, o.in})
     if (fs::equivalent(o.out, input, ec)) throw core::InputError(o.out, "would overwrite the input " + input);

@@ -71,9 +71,8 @@ void parseClose(const std::string& text, double& start_s, double& end_s) {
 
 void checkOutputs(const DoorOptions& o, const std::string& png) {
   namespace fs = std::filesystem;
-  if (fs::path(o.out).extension() != ".wav") throw core::InputError(o.out, "the output must be a .wav file");
-  for (const std::string& p : {o.out, png})
-    if (!fs::is_directory(fs::absolute(p).parent_path())) throw core::InputError(p, "its folder does not exist");
+  checkOutputFile(o.out, ".wav");
+  checkOutputFile(png, ".png");
   std::error_code ec;
   for (const std::string& p : {o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png})
     for (const std::string& input : {o.in, o.room_file})

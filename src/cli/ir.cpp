@@ -100,13 +100,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     const std::string wav = opts->out.empty()
                                 ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
                                 : opts->out;
-    if (std::filesystem::path(wav).extension() != ".wav")
-      throw core::InputError(wav, "the output must be a .wav file");
-    for (const std::string& out : {wav, opts->plot}) {
-      if (out.empty()) continue;
-      if (!std::filesystem::is_directory(std::filesystem::absolute(out).parent_path()))
-        throw core::InputError(out, "its folder does not exist");
-    }
+    checkOutputFile(wav, ".wav");
+    if (!opts->plot.empty()) checkOutputFile(opts->plot, "");
     if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
       throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the

@@ -32,6 +32,13 @@ void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order) 
       ->capture_default_str();
 }
 
+void checkOutputFile(const std::string& path, const std::string& ext) {
+  namespace fs = std::filesystem;
+  if (!ext.empty() && fs::path(path).extension() != ext)
+    throw core::InputError(path, "the output must be a " + ext + " file");
+  if (!fs::is_directory(fs::absolute(path).parent_path())) throw core::InputError(path, "its folder does not exist");
+}
+
 std::string withExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
 }

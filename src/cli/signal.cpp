@@ -56,9 +56,7 @@ void checkOptions(const SignalOptions& o, const std::vector<KindOption>& specifi
   }
   core::requireFinite("--level", o.level_dbfs);
   if (o.level_dbfs > 0.0) throw core::InputError("--level", "the peak cannot exceed 0 dBFS");
-  namespace fs = std::filesystem;
-  if (fs::path(o.out).extension() != ".wav") throw core::InputError(o.out, "the output must be a .wav file");
-  if (!fs::is_directory(fs::absolute(o.out).parent_path())) throw core::InputError(o.out, "its folder does not exist");
+  checkOutputFile(o.out, ".wav");
 }
 
 std::vector<float> generate(SignalOptions& o, bool duration_given) {

@@ -34,8 +34,7 @@ constexpr long kMaxAutoFrames = 8000;  // ten times the plot's columns: finer ho
 
 void checkOutputPath(const SpectrogramOptions& o) {
   namespace fs = std::filesystem;
-  if (fs::path(o.out).extension() != ".png") throw core::InputError(o.out, "the output must be a .png file");
-  if (!fs::is_directory(fs::absolute(o.out).parent_path())) throw core::InputError(o.out, "its folder does not exist");
+  checkOutputFile(o.out, ".png");
   std::error_code ec;
   if (fs::equivalent(o.out, o.in, ec)) throw core::InputError(o.out, "would overwrite the input");
 }

@@ -5,12 +5,13 @@
 #include <string>
 
 #include "diffray/core/error.h"
+#include "diffray/core/math.h"
 
 namespace diffray::dsp {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using core::kPi;
 
 /// round(duration · rate) samples, refused beyond 2^31 (about 12 h at 48 kHz).
 long sampleCount(double rate_hz, double duration_s) {

@@ -25,6 +25,10 @@ void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help
 /// Adds --diffraction none|wbsdf|utd and --diffraction-order N (1–8) to `sub`.
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
 
+/// Checks an output path before any work: its extension is `ext` (".wav"; not checked when empty) and its folder
+/// exists. Throws core::InputError naming the path.
+void checkOutputFile(const std::string& path, const std::string& ext);
+
 /// `path` with its extension replaced by `ext` (".json").
 std::string withExtension(const std::string& path, const std::string& ext);
 
