@@ -13,6 +13,7 @@
 #include <string>
 
 #include "diffray/core/error.h"
+#include "image_fixtures.h"
 #include "diffray/image/exr.h"
 
 namespace diffray::image {
@@ -20,18 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("diffray_exr_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  int entries() const {
-    return static_cast<int>(std::distance(fs::directory_iterator(path), fs::directory_iterator()));
-  }
-};
+using test::TempDir;
 
 TEST(ImageExr, FloatChannelsRoundTripBitExact) {
-  TempDir dir;
+  TempDir dir("exr_test");
   Image img = makeImage(6, 3);
   for (std::size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = std::cos(static_cast<float>(i)) * 3.0f;
   img.rgb[5] = -1e-20f;
@@ -58,7 +51,7 @@ TEST(ImageExr, FloatChannelsRoundTripBitExact) {
 }
 
 TEST(ImageExr, FailuresAreInputErrorsAndLeaveNothing) {
-  TempDir dir;
+  TempDir dir("exr_test");
   fs::create_directories(dir.path / "taken.exr");
   EXPECT_THROW(writeExr(dir.file("taken.exr"), makeImage(2, 2)), core::InputError);
   EXPECT_THROW(writeExr(dir.file("no/dir/x.exr"), makeImage(2, 2)), core::InputError);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "diffray/core/error.h"
+#include "image_fixtures.h"
 #include "diffray/image/pfm.h"
 
 namespace diffray::image {
@@ -20,15 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("diffray_pfm_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  int entries() const {
-    return static_cast<int>(std::distance(fs::directory_iterator(path), fs::directory_iterator()));
-  }
-};
+using test::TempDir;
 
 std::vector<unsigned char> slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -44,7 +37,7 @@ float leFloat(const unsigned char* b) {
 }
 
 TEST(ImagePfm, HeaderAndBottomToTopLittleEndianLayout) {
-  TempDir dir;
+  TempDir dir("pfm_test");
   Image img = makeImage(3, 2);
   for (int i = 0; i < 18; ++i) img.rgb[i] = static_cast<float>(i) - 4.5f;  // negatives too
   img.rgb[7] = 1e-30f;
@@ -70,7 +63,7 @@ TEST(ImagePfm, HeaderAndBottomToTopLittleEndianLayout) {
 }
 
 TEST(ImagePfm, RoundTripKeepsSignedAndNonFiniteValues) {
-  TempDir dir;
+  TempDir dir("pfm_test");
   Image img = makeImage(5, 4);
   for (std::size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = std::sin(static_cast<float>(i)) * 1e3f;
   img.rgb[3] = NAN;
@@ -89,7 +82,7 @@ TEST(ImagePfm, RoundTripKeepsSignedAndNonFiniteValues) {
 }
 
 TEST(ImagePfm, ReadsBigEndianToo) {
-  TempDir dir;
+  TempDir dir("pfm_test");
   const std::string path = dir.file("be.pfm");
   {
     std::ofstream out(path, std::ios::binary);
@@ -104,7 +97,7 @@ TEST(ImagePfm, ReadsBigEndianToo) {
 }
 
 TEST(ImagePfm, FailuresAreInputErrorsAndLeaveNothing) {
-  TempDir dir;
+  TempDir dir("pfm_test");
   fs::create_directories(dir.path / "taken.pfm");
   EXPECT_THROW(writePfm(dir.file("taken.pfm"), makeImage(2, 2)), core::InputError);
   EXPECT_THROW(writePfm(dir.file("no/dir/x.pfm"), makeImage(2, 2)), core::InputError);

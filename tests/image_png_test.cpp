@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "diffray/core/error.h"
+#include "image_fixtures.h"
 #include "diffray/image/png.h"
 
 namespace diffray::image {
@@ -19,15 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("diffray_png_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  int entries() const {
-    return static_cast<int>(std::distance(fs::directory_iterator(path), fs::directory_iterator()));
-  }
-};
+using test::TempDir;
 
 struct Decoded {
   bool ok = false;
@@ -70,7 +63,7 @@ int expectedByte(double linear) {
 }
 
 TEST(ImagePng, RoundTripThroughLibpng) {
-  TempDir dir;
+  TempDir dir("png_test");
   Image img = makeImage(7, 5);  // odd sizes: no row padding assumptions
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -98,7 +91,7 @@ TEST(ImagePng, RoundTripThroughLibpng) {
 }
 
 TEST(ImagePng, ExposureScalesAndNegativesClampToZero) {
-  TempDir dir;
+  TempDir dir("png_test");
   Image img = makeImage(4, 1);
   const float values[12] = {0.25f, -0.01f, 0.05f, -1.0f, -2.0f, -3.0f, 0.5f, 0.6f, 0.7f,
                             NAN, 0.1f, 0.2f};
@@ -119,7 +112,7 @@ TEST(ImagePng, ExposureScalesAndNegativesClampToZero) {
 }
 
 TEST(ImagePng, FailedWriteThrowsAndLeavesNothing) {
-  TempDir dir;
+  TempDir dir("png_test");
   const Image img = makeImage(2, 2);
   // A directory where the file should go: the temporary is written, the rename fails, it is removed.
   fs::create_directories(dir.path / "taken.png");
@@ -139,7 +132,7 @@ TEST(ImagePng, FailedWriteThrowsAndLeavesNothing) {
 }
 
 TEST(ImagePng, BadInputIsAnInputErrorBeforeAnyFile) {
-  TempDir dir;
+  TempDir dir("png_test");
   Image bad;
   bad.width = 3, bad.height = 2;
   bad.rgb.assign(17, 0.0f);  // one short
