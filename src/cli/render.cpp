@@ -103,7 +103,8 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                         {"energy",
                          {{"emitted_w", p},
                           {"on_diffuse", r.on_diffuse / p},
-                          {"absorbed", r.absorbed / p},
+                          {"absorbed_occluders", r.absorbed_occluders / p},
+                          {"absorbed_diffuse", r.absorbed_diffuse / p},
                           {"evanescent", r.evanescent / p},
                           {"escaped", r.escaped / p},
                           {"bounce_limit", r.bounce_limit / p}}}};

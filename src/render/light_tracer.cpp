@@ -16,7 +16,8 @@ void RenderResult::merge(const RenderResult& o) {
   radiance.merge(o.radiance);
   emitted += o.emitted;
   on_diffuse += o.on_diffuse;
-  absorbed += o.absorbed;
+  absorbed_occluders += o.absorbed_occluders;
+  absorbed_diffuse += o.absorbed_diffuse;
   evanescent += o.evanescent;
   escaped += o.escaped;
   bounce_limit += o.bounce_limit;
@@ -120,7 +121,7 @@ class PathTracer {
       } else if (obj.kind == ObjectKind::Screen) {
         if (!diffuse(s_.rects[obj.index], obj.frame, p, dn, ph)) return;
       } else {
-        acc_.absorbed += ph.energy;
+        acc_.absorbed_occluders += ph.energy;  // no other kind is built (render/light_setup.h)
         return;
       }
       ph.o = p;
@@ -135,7 +136,7 @@ class PathTracer {
     const transport::ScatterFate fate =
         transport::scatterAtOccluder(occ, obj.frame, x, y, ph.lambda_nm * 1e-9, xi_x, xi_y, ph.d.data(), weight);
     if (fate == transport::ScatterFate::Absorbed) {
-      acc_.absorbed += ph.energy;
+      acc_.absorbed_occluders += ph.energy;
       return false;
     }
     ph.energy *= weight;
@@ -169,7 +170,7 @@ class PathTracer {
     }
     // Russian roulette on the albedo: the survivor keeps its energy (ρ/ρ), leaving in a cosine lobe.
     if (ph.diffuse_bounces >= s_.settings.diffuse_bounces || !(rng_.uniform() < albedo)) {
-      acc_.absorbed += ph.energy;
+      acc_.absorbed_diffuse += ph.energy;
       return false;
     }
     ++ph.diffuse_bounces;
