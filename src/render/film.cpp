@@ -21,13 +21,16 @@ image::Image linearSrgb(const RenderResult& r) {
 }
 
 double autoExposure(const RenderResult& r) {
-  std::vector<double> y;
-  for (std::size_t i = 1; i < r.xyz.size(); i += 3)
-    if (r.xyz[i] > 0) y.push_back(r.xyz[i]);
-  if (y.empty()) return 1.0;
-  const std::size_t k = std::min(y.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(y.size())));
-  std::nth_element(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(k), y.end());
-  return 1.0 / y[k];
+  const image::Image img = linearSrgb(r);
+  std::vector<double> peak;  // per pixel: its largest linear sRGB component, where positive
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
+    const double m = std::max({img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]});
+    if (m > 0) peak.push_back(m);
+  }
+  if (peak.empty()) return 1.0;
+  const std::size_t k = std::min(peak.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(peak.size())));
+  std::nth_element(peak.begin(), peak.begin() + static_cast<std::ptrdiff_t>(k), peak.end());
+  return 1.0 / peak[k];
 }
 
 }  // namespace diffray::render

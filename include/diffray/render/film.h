@@ -10,8 +10,8 @@ namespace diffray::render {
 /// Linear sRGB of every pixel (may hold negative values where a pixel's radiance is negative or out of gamut).
 image::Image linearSrgb(const RenderResult& r);
 
-/// The exposure that maps the 99th percentile of the pixels' luminance Y (over pixels with Y > 0) to 1;
-/// 1 when no pixel has Y > 0.
+/// The exposure that maps the 99th percentile of the pixels' largest linear sRGB component (over pixels where it
+/// is > 0) to 1, so that saturated colours (a red laser) do not clip; 1 when no pixel is positive.
 double autoExposure(const RenderResult& r);
 
 }  // namespace diffray::render

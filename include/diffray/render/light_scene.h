@@ -82,7 +82,7 @@ struct RenderSettings {
   std::uint64_t seed = 1;
   int max_bounces = 16;     ///< scattering events (occluders and diffuse) per photon path
   int diffuse_bounces = 0;  ///< diffuse reflections a photon may continue after (0: direct light only)
-  double exposure = 0.0;    ///< PNG scale; 0 = automatic (the 99th percentile of Y maps to 1)
+  double exposure = 0.0;    ///< PNG scale; 0 = automatic (render/film.h: autoExposure)
 };
 
 struct LightScene {
