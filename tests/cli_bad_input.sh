@@ -355,6 +355,31 @@ if grep -q "no audio output devices" "$tmp/devices"; then
     echo "FAIL: auralize --play without a device: exit=$code"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 fi
 
+# diffray render: scene errors and options, one line each and no image left behind.
+png="$tmp/out.csv.png"  # out.csv* : caught by expect_error's no-output check (PNG, PFM and JSON)
+light='"rectangles": [{"centre": [0,0,0], "normal": [0,0,1], "width_m": 1, "height_m": 1}],
+  "camera": {"position": [0,0,1], "look_at": [0,0,0], "fov_deg": 40, "pixels": [8, 8]}'
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}]}\n' "$light" >"$tmp/light.json"
+printf '{%s, "lights": [{"type": "laser", "position": [0,0,0.5], "direction": [0,0,-1], "width_m": 0.1}]}\n' "$light" >"$tmp/nowl.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "colour": 1}\n' "$light" >"$tmp/key.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5], "power_w": -1}]}\n' "$light" >"$tmp/neg.json"
+printf '{"rectangles": [' >"$tmp/syntax.json"
+expect_error "render: missing scene"      render "$tmp/none.json" -o "$png"
+expect_error "render: JSON syntax"        render "$tmp/syntax.json" -o "$png"
+expect_error "render: laser without nm"   render "$tmp/nowl.json" -o "$png"
+expect_error "render: unknown key"        render "$tmp/key.json" -o "$png"
+expect_error "render: negative power"     render "$tmp/neg.json" -o "$png"
+expect_error "render: zero photons"       render "$tmp/light.json" -o "$png" --photons 0
+expect_error "render: photons and spp"    render "$tmp/light.json" -o "$png" --photons 100 --spp 2
+expect_error "render: not a PNG"          render "$tmp/light.json" -o "$tmp/out.csv"
+expect_error "render: missing folder"     render "$tmp/light.json" -o "$tmp/no/such/dir/out.png"
+expect_error "render: zero exposure"      render "$tmp/light.json" -o "$png" --photons 100 --exposure 0
+# The good path writes the PNG (by its signature), the PFM and the sidecar.
+"$bin" render "$tmp/light.json" -o "$tmp/good.png" --photons 2000 >/dev/null 2>&1
+if [ "$(head -c 8 "$tmp/good.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
+   [ "$(head -c 2 "$tmp/good.pfm" 2>/dev/null)" = "PF" ] && grep -q '"photons": 2000' "$tmp/good.json" 2>/dev/null; then
+  passes=$((passes + 1)); else echo "FAIL: render did not write PNG, PFM and JSON"; fails=$((fails + 1)); fi
+
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 

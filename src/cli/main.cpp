@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner door = diffray::cli::addDoorCommand(app, common);
   diffray::cli::Runner spectrogram = diffray::cli::addSpectrogramCommand(app, common);
   diffray::cli::Runner dry_signal = diffray::cli::addSignalCommand(app, common);
+  diffray::cli::Runner render = diffray::cli::addRenderCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("door")) return door();
     if (app.got_subcommand("spectrogram")) return spectrogram();
     if (app.got_subcommand("signal")) return dry_signal();
+    if (app.got_subcommand("render")) return render();
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << e.what() << "\n";

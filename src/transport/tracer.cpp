@@ -50,42 +50,27 @@ struct PathState {
 // `p` is the hit point in double. Returns false when the ray ends there.
 bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const double* p,
                        core::ChunkSampler& sampler, PathState& s, TraceResult& acc) {
-  const double wavelength = s.lambda;
   const geometry::Frame& f = obj.frame;
   const double x = dot(p, f.ex) - obj.origin_x, y = dot(p, f.ey) - obj.origin_y;
-  const double alpha = dot(s.d, f.ex), beta = dot(s.d, f.ey), gamma = dot(s.d, f.n);
   // The first scattering uses the quasi-random dimensions paired with the source position (kDimU,
   // kDimV); later ones draw fresh uniforms.
   const bool first = s.dim == kDimFree;
   const double xi_x = first ? sampler.at(s.index, kDimU) : sampler.next(s.index, s.dim);
   const double xi_y = first ? sampler.at(s.index, kDimV) : sampler.next(s.index, s.dim);
   if (first) s.dim = kDimFree + 1;
-  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x, xi_x);
-  double weight = sx.weight;
-  double v_shift = 0.0;
-  if (occ.table_y && weight != 0.0) {
-    const wbsdf::WbsdfTable::Sample sy = occ.table_y->sample(y, xi_y);
-    weight *= sy.weight;
-    v_shift = sy.u_shift;
-  }
-  if (weight == 0.0) {  // t = 0 here: the opaque part of the occluder
+  double weight = 0.0;
+  const ScatterFate fate = transport::scatterAtOccluder(occ, f, x, y, s.lambda, xi_x, xi_y, s.d, weight);
+  if (fate == ScatterFate::Absorbed) {  // t = 0 here: the opaque part of the occluder
     acc.absorbed += s.energy;
     return false;
   }
   s.energy *= weight;
-  // Direction cosines are λ·u (design.md §1); an imaginary γ is an evanescent wave: the ray ends.
-  const double alpha_o = alpha + wavelength * sx.u_shift;
-  const double beta_o = beta + wavelength * v_shift;
-  const double gamma_sq = 1.0 - alpha_o * alpha_o - beta_o * beta_o;
-  if (gamma_sq <= 0.0) {
+  if (fate == ScatterFate::Evanescent) {
     acc.evanescent += s.energy;
     return false;
   }
-  double gamma_o = std::copysign(std::sqrt(gamma_sq), gamma);
-  if (occ.reflect) gamma_o = -gamma_o;  // paper eq. 9 (eq:reflection): the mirrored outgoing wave
   double extent = 1.0;
   for (int c = 0; c < 3; ++c) {
-    s.d[c] = alpha_o * f.ex[c] + beta_o * f.ey[c] + gamma_o * f.n[c];
     s.o[c] = p[c];
     extent = std::max(extent, std::abs(p[c]));
   }
@@ -145,6 +130,29 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
 }
 
 }  // namespace
+
+ScatterFate scatterAtOccluder(const Occluder& occ, const geometry::Frame& f, double x_m, double y_m,
+                              double wavelength_m, double xi_x, double xi_y, double* dir, double& weight) {
+  const double alpha = dot(dir, f.ex), beta = dot(dir, f.ey), gamma = dot(dir, f.n);
+  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x_m, xi_x);
+  weight = sx.weight;
+  double v_shift = 0.0;
+  if (occ.table_y && weight != 0.0) {
+    const wbsdf::WbsdfTable::Sample sy = occ.table_y->sample(y_m, xi_y);
+    weight *= sy.weight;
+    v_shift = sy.u_shift;
+  }
+  if (weight == 0.0) return ScatterFate::Absorbed;
+  // Direction cosines are λ·u (design.md §1); an imaginary γ is an evanescent wave: the ray ends.
+  const double alpha_o = alpha + wavelength_m * sx.u_shift;
+  const double beta_o = beta + wavelength_m * v_shift;
+  const double gamma_sq = 1.0 - alpha_o * alpha_o - beta_o * beta_o;
+  if (gamma_sq <= 0.0) return ScatterFate::Evanescent;
+  double gamma_o = std::copysign(std::sqrt(gamma_sq), gamma);
+  if (occ.reflect) gamma_o = -gamma_o;  // paper eq. 9 (eq:reflection): the mirrored outgoing wave
+  for (int c = 0; c < 3; ++c) dir[c] = alpha_o * f.ex[c] + beta_o * f.ey[c] + gamma_o * f.n[c];
+  return ScatterFate::Continue;
+}
 
 TraceResult trace(const Scene& scene, const CollimatedSource& source, const TraceOptions& options) {
   core::requirePositive("wavelength", source.wavelength_m);

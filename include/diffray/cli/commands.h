@@ -46,5 +46,6 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& common);
 Runner addDoorCommand(CLI::App& app, CommonOptions& common);
 Runner addSpectrogramCommand(CLI::App& app, CommonOptions& common);
 Runner addSignalCommand(CLI::App& app, CommonOptions& common);
+Runner addRenderCommand(CLI::App& app, CommonOptions& common);
 
 }  // namespace diffray::cli

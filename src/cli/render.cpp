@@ -1,0 +1,117 @@
+// `diffray render SCENE.json -o OUT.png [--photons N | --spp N] [--seed S] [--threads T] [--exposure E]`:
+// light-traces a light scene (rooms/light/README.md, render/light_tracer.h) and writes OUT.png (sRGB, 8 bit),
+// OUT.pfm (linear sRGB floats, radiance units) and OUT.json (photons, seed, seconds, negative-energy
+// fractions, energy balance). Every output is written atomically; bad input is one line and exit 2.
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "diffray/cli/commands.h"
+#include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/core/progress.h"
+#include "diffray/image/pfm.h"
+#include "diffray/image/png.h"
+#include "diffray/render/film.h"
+#include "diffray/render/light_scene.h"
+#include "diffray/render/light_setup.h"
+#include "diffray/render/light_tracer.h"
+
+namespace diffray::cli {
+
+namespace {
+
+struct RenderCliOptions {
+  std::string scene, out;
+  double photons = 0, spp = 0, exposure = 0;
+  bool seed_given = false;
+};
+
+void checkOutput(const std::string& out, const std::string& in) {
+  namespace fs = std::filesystem;
+  if (fs::path(out).extension() != ".png") throw core::InputError(out, "the output must be a .png file");
+  if (!fs::is_directory(fs::absolute(out).parent_path())) throw core::InputError(out, "its folder does not exist");
+  std::error_code ec;
+  if (fs::equivalent(out, in, ec) || fs::equivalent(withExtension(out, ".json"), in, ec))
+    throw core::InputError(out, "would overwrite the scene file");
+}
+
+std::uint64_t wholeCount(const char* option, double v) {
+  if (!(v >= 1 && v <= 1e13 && std::floor(v) == v))
+    throw core::InputError(option, "must be a whole number >= 1 (e.g. 2000000 or 2e6)");
+  return static_cast<std::uint64_t>(v);
+}
+
+}  // namespace
+
+Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
+  auto o = std::make_shared<RenderCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "render", "Render a light scene (rooms/light/README.md) by spectral light tracing with WBSDF occluders: "
+                "writes OUT.png, OUT.pfm (linear floats) and OUT.json.");
+  sub->add_option("scene", o->scene, "light scene file (JSON)")->required();
+  sub->add_option("-o,--output", o->out, "output PNG (the .pfm and .json go beside it)")->required();
+  auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
+  sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
+  sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)");
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
+  sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");
+  return [o, sub, &common]() {
+    checkOutput(o->out, o->scene);
+    const render::LightScene scene = render::loadLightScene(o->scene);
+    std::uint64_t photons = scene.settings.photons;
+    if (sub->count("--photons")) photons = wholeCount("--photons", o->photons);
+    if (sub->count("--spp"))
+      photons = wholeCount("--spp", o->spp) * static_cast<std::uint64_t>(scene.camera.width) * scene.camera.height;
+    if (sub->count("--exposure")) core::requirePositive("--exposure", o->exposure);
+    const std::uint64_t seed = sub->count("--seed") ? common.seed : scene.settings.seed;
+
+    core::ThreadLimit limit(common.threads);
+    const auto start = std::chrono::steady_clock::now();
+    const auto prepared = render::prepareScene(scene);
+    render::RenderOptions ropt;
+    ropt.photons = photons;
+    ropt.seed = seed;
+    core::Progress progress("render " + scene.name, photons);
+    ropt.on_progress = [&](std::uint64_t n) { progress.add(n); };
+    const render::RenderResult r = render::renderLight(*prepared, ropt);
+    progress.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    const double exposure = o->exposure > 0 ? o->exposure
+                            : scene.settings.exposure > 0 ? scene.settings.exposure
+                                                          : render::autoExposure(r);
+    const image::Image img = render::linearSrgb(r);
+    image::writePng(o->out, img, exposure);
+    image::writePfm(withExtension(o->out, ".pfm"), img);
+    const double p = r.emitted;
+    nlohmann::json side{{"scene", o->scene},
+                        {"name", scene.name},
+                        {"width", r.width},
+                        {"height", r.height},
+                        {"photons", r.photons},
+                        {"seed", seed},
+                        {"threads", core::ThreadLimit::current()},
+                        {"seconds", seconds},
+                        {"exposure", exposure},
+                        {"negative_pixel_fraction", r.negativePixelFraction()},
+                        {"negative_score_fraction", r.negativeScoreFraction()},
+                        {"camera_scores", r.camera_scores},
+                        {"energy",
+                         {{"emitted_w", p},
+                          {"on_diffuse", r.on_diffuse / p},
+                          {"absorbed_occluders", r.absorbed_occluders / p},
+                          {"absorbed_diffuse", r.absorbed_diffuse / p},
+                          {"evanescent", r.evanescent / p},
+                          {"escaped", r.escaped / p},
+                          {"bounce_limit", r.bounce_limit / p}}}};
+    core::writeFileAtomically(withExtension(o->out, ".json"), [&](std::ostream& out) { out << side.dump(2) << "\n"; });
+    std::cout << side.dump() << std::endl;
+    return 0;
+  };
+}
+
+}  // namespace diffray::cli

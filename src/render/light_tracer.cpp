@@ -1,0 +1,236 @@
+#include "diffray/render/light_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "diffray/color/cie1931.h"
+#include "diffray/color/wavelength.h"
+#include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
+#include "diffray/transport/tracer.h"
+
+namespace diffray::render {
+
+void RenderResult::merge(const RenderResult& o) {
+  for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] += o.xyz[i];
+  radiance.merge(o.radiance);
+  emitted += o.emitted;
+  on_diffuse += o.on_diffuse;
+  absorbed_occluders += o.absorbed_occluders;
+  absorbed_diffuse += o.absorbed_diffuse;
+  evanescent += o.evanescent;
+  escaped += o.escaped;
+  bounce_limit += o.bounce_limit;
+  scored_positive += o.scored_positive;
+  scored_negative += o.scored_negative;
+  photons += o.photons;
+  camera_scores += o.camera_scores;
+}
+
+double RenderResult::negativeScoreFraction() const {
+  const double all = scored_positive + scored_negative;
+  return all > 0 ? scored_negative / all : 0.0;
+}
+
+namespace {
+
+using transport::ObjectKind;
+
+// A photon in flight: position, unit direction, signed energy, wavelength.
+struct Photon {
+  Vec3 o, d;
+  double energy = 0.0;
+  double lambda_nm = 550.0;
+  double tnear = 0.0;
+  int diffuse_bounces = 0;
+};
+
+// A unit vector with pdf cosθ/π about `n` (Malley's method).
+Vec3 cosineDirection(const Vec3& n, double u1, double u2) {
+  const Vec3 t = (std::abs(n.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).cross(n).normalized();
+  const Vec3 b = n.cross(t);
+  const double r = std::sqrt(u1), phi = core::kTwoPi * u2;
+  return r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
+}
+
+// Offset past a surface at p, in Embree's float arithmetic.
+double surfaceEpsilon(const Vec3& p) { return 1e-6 * std::max(1.0, p.cwiseAbs().maxCoeff()); }
+
+class PathTracer {
+ public:
+  PathTracer(const PreparedScene& ps, RenderResult& acc, core::FastRng& rng)
+      : ps_(ps), s_(*ps.spec), acc_(acc), rng_(rng) {}
+
+  void emit(const Light& l, double energy) {
+    Photon ph;
+    ph.energy = energy;
+    // Wavelength: the laser line, or λ ∝ x̄ + ȳ + z̄ for an equal-energy spectrum S(λ) = 1/400 per nm.
+    if (l.spectrum.kind == Spectrum::Kind::Laser) {
+      ph.lambda_nm = l.spectrum.wavelength_nm;
+    } else {
+      const color::WavelengthSample w = color::sampleWavelength(rng_.uniform(), kVisibleLoNm, kVisibleHiNm);
+      ph.lambda_nm = w.wavelength_nm;
+      ph.energy *= 1.0 / ((kVisibleHiNm - kVisibleLoNm) * w.pdf_per_nm);
+    }
+    if (l.kind == Light::Kind::Collimated) {
+      const double sx = (2.0 * rng_.uniform() - 1.0) * l.half_x_m, sy = (2.0 * rng_.uniform() - 1.0) * l.half_y_m;
+      ph.o = l.position_m + sx * l.frame.ex + sy * l.frame.ey;
+      ph.d = l.frame.n;
+    } else if (l.aim >= 0) {
+      // Toward a point y drawn uniformly on the target rectangle: the solid-angle pdf is r²/(A cosθ_y), so
+      // the isotropic light's share P/(4π)·dω becomes the weight A·cosθ_y/(4π r²).
+      const LightScene::Target t = s_.target(l.aim);
+      const double sx = (2.0 * rng_.uniform() - 1.0) * t.half_x_m, sy = (2.0 * rng_.uniform() - 1.0) * t.half_y_m;
+      const Vec3 y = t.frame->origin + sx * t.frame->ex + sy * t.frame->ey;
+      const Vec3 to = y - l.position_m;
+      const double r2 = to.squaredNorm();
+      ph.o = l.position_m;
+      ph.d = to / std::sqrt(r2);
+      const double area = 4.0 * t.half_x_m * t.half_y_m;
+      ph.energy *= area * std::abs(ph.d.dot(t.frame->n)) / (4.0 * core::kPi * r2);
+    } else {
+      const double z = 2.0 * rng_.uniform() - 1.0, phi = core::kTwoPi * rng_.uniform();
+      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+      ph.o = l.position_m;
+      ph.d = Vec3(r * std::cos(phi), r * std::sin(phi), z);
+    }
+    trace(ph);
+  }
+
+ private:
+  void trace(Photon& ph) {
+    const geometry::Intersector& isect = ps_.scene.intersector();
+    for (int bounce = 0;; ++bounce) {
+      if (bounce == s_.settings.max_bounces) {
+        acc_.bounce_limit += ph.energy;
+        return;
+      }
+      const geometry::Hit hit = isect.intersect({ph.o, ph.d, ph.tnear, 1e300});
+      if (!hit.valid()) {
+        acc_.escaped += ph.energy;
+        return;
+      }
+      const transport::Scene::ObjectRef& obj = ps_.scene.object(hit.object);
+      // The hit point in double from the object's plane (design.md §1: microns matter on an occluder).
+      const double dn = ph.d.dot(obj.frame.n);
+      double t = (obj.origin_n - ph.o.dot(obj.frame.n)) / dn;
+      if (!(std::isfinite(t) && t > 0)) t = hit.t;
+      const Vec3 p = ph.o + t * ph.d;
+      if (obj.kind == ObjectKind::Occluder) {
+        if (!scatter(ps_.scene.occluders()[obj.index], obj, p, ph)) return;
+      } else if (obj.kind == ObjectKind::Screen) {
+        if (!diffuse(s_.rects[obj.index], obj.frame, p, dn, ph)) return;
+      } else {
+        acc_.absorbed_occluders += ph.energy;  // no other kind is built (render/light_setup.h)
+        return;
+      }
+      ph.o = p;
+      ph.tnear = surfaceEpsilon(p);
+    }
+  }
+
+  bool scatter(const transport::Occluder& occ, const transport::Scene::ObjectRef& obj, const Vec3& p, Photon& ph) {
+    const double x = p.dot(obj.frame.ex) - obj.origin_x, y = p.dot(obj.frame.ey) - obj.origin_y;
+    const double xi_x = rng_.uniform(), xi_y = rng_.uniform();
+    double weight = 0.0;
+    const transport::ScatterFate fate =
+        transport::scatterAtOccluder(occ, obj.frame, x, y, ph.lambda_nm * 1e-9, xi_x, xi_y, ph.d.data(), weight);
+    if (fate == transport::ScatterFate::Absorbed) {
+      acc_.absorbed_occluders += ph.energy;
+      return false;
+    }
+    ph.energy *= weight;
+    if (fate == transport::ScatterFate::Evanescent) {
+      acc_.evanescent += ph.energy;
+      return false;
+    }
+    return true;
+  }
+
+  // Scores the photon at diffuse point p (the measurement of light_tracer.h), then continues it or not.
+  bool diffuse(const DiffuseRect& rect, const geometry::Frame& f, const Vec3& p, double dn, Photon& ph) {
+    acc_.on_diffuse += ph.energy;
+    const Vec3 lit = dn < 0 ? f.n : Vec3(-f.n);  // the face the photon arrived on
+    const double albedo = rect.albedo.at(ph.lambda_nm);
+    const Camera::Projection pr = ps_.camera.project(p);
+    if (pr.inside()) {
+      const double cos_s = lit.dot(pr.to_camera);
+      if (cos_s > 0 && visible(p, pr)) {
+        const std::size_t pix = static_cast<std::size_t>(pr.iy) * ps_.camera.width() + pr.ix;
+        const double dP = ph.energy * albedo / core::kPi * cos_s / (pr.distance_m * pr.distance_m) /
+                          ps_.pixel_solid_angle_sr[pix];
+        const color::Xyz c = color::cie1931(ph.lambda_nm);
+        acc_.xyz[3 * pix] += dP * c.x;
+        acc_.xyz[3 * pix + 1] += dP * c.y;
+        acc_.xyz[3 * pix + 2] += dP * c.z;
+        acc_.radiance.add(static_cast<int>(pix), dP);
+        (dP >= 0 ? acc_.scored_positive : acc_.scored_negative) += std::abs(dP);
+        ++acc_.camera_scores;
+      }
+    }
+    // Russian roulette on the albedo: the survivor keeps its energy (ρ/ρ), leaving in a cosine lobe.
+    if (ph.diffuse_bounces >= s_.settings.diffuse_bounces || !(rng_.uniform() < albedo)) {
+      acc_.absorbed_diffuse += ph.energy;
+      return false;
+    }
+    ++ph.diffuse_bounces;
+    const double u1 = rng_.uniform(), u2 = rng_.uniform();
+    ph.d = cosineDirection(lit, u1, u2);
+    return true;
+  }
+
+  // Whether nothing lies between p and the pinhole.
+  bool visible(const Vec3& p, const Camera::Projection& pr) const {
+    const double eps = surfaceEpsilon(p);
+    const geometry::Hit h = ps_.scene.intersector().intersect({p, pr.to_camera, eps, pr.distance_m});
+    return !h.valid() || h.t >= pr.distance_m * (1.0 - 1e-6);
+  }
+
+  const PreparedScene& ps_;
+  const LightScene& s_;
+  RenderResult& acc_;
+  core::FastRng& rng_;
+};
+
+}  // namespace
+
+RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) {
+  DIFFRAY_CHECK(ps.spec != nullptr);
+  const LightScene& s = *ps.spec;
+  if (options.photons == 0) throw core::InputError("--photons", "must be > 0");
+  if (s.lights.empty()) throw core::InputError(s.file, "the scene has no light");
+  std::vector<double> cdf;  // lights picked ∝ power
+  double total = 0.0;
+  for (const Light& l : s.lights) cdf.push_back(total += l.power_w);
+  const double photon_energy = total / static_cast<double>(options.photons);
+  const int npix = ps.camera.width() * ps.camera.height();
+
+  auto make = [&] {
+    RenderResult r;
+    r.width = ps.camera.width();
+    r.height = ps.camera.height();
+    r.xyz.assign(3 * static_cast<std::size_t>(npix), 0.0);
+    r.radiance = receiver::ScreenTally(npix);
+    return r;
+  };
+  auto body = [&](RenderResult& acc, core::Rng& chunk_rng, std::uint64_t begin, std::uint64_t end) {
+    core::FastRng rng(chunk_rng);
+    PathTracer tracer(ps, acc, rng);
+    for (std::uint64_t i = begin; i < end; ++i) {
+      const double pick = rng.uniform() * total;
+      const std::size_t l = std::min<std::size_t>(
+          static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()), cdf.size() - 1);
+      acc.emitted += photon_energy;
+      ++acc.photons;
+      tracer.emit(s.lights[l], photon_energy);
+    }
+    acc.radiance.closeChunk();
+  };
+  auto progress = [&](std::uint64_t n) {
+    if (options.on_progress) options.on_progress(n);
+  };
+  return core::deterministicReduce<RenderResult>(options.photons, options.chunk_photons, options.seed, make, body,
+                                                 progress);
+}
+
+}  // namespace diffray::render
