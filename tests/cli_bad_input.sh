@@ -39,6 +39,8 @@ expect_error "infinite distance"      validate slit-fraunhofer --distance inf --
 expect_error "negative frequency"     validate door-rs --freq 125,-250 --rays 1000 "$csv"
 expect_error "spacing below width"    validate double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"
 expect_error "unknown case"           validate no-such-case "$csv"
+expect_error "image: spacing below width" validate image-double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"
+expect_error "image: infrared"       validate image-double-slit --wavelength 1e-6 --rays 1000 "$csv"
 expect_error "unknown option"         validate slit-fraunhofer --no-such-option 3 "$csv"
 expect_error "option of another case" validate slit-fraunhofer --spacing 1e-4 --rays 1000 "$csv"
 expect_error "non-numeric value"      validate slit-fraunhofer --width wide --rays 1000 "$csv"

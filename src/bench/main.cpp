@@ -7,6 +7,8 @@
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
 //                block's duration (realtime_bench.cpp).
+//   render-is:   the light tracer's importance-sampled WBSDF shifts vs uniform shifts at equal wall time,
+//                errors against the absolute Fraunhofer double slit (render_is_bench.cpp).
 #include <embree3/rtcore.h>
 #include <tbb/parallel_reduce.h>
 
@@ -17,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "realtime_bench.h"
+#include "render_is_bench.h"
 #include "room_bench.h"
 
 #include "diffray/core/parallel.h"
@@ -199,6 +202,7 @@ int main(int argc, char** argv) {
       benchConvergence("slit-fraunhofer", true);
     }
     if (which == "all" || which == "realtime") bench::benchRealtime(20.0);
+    if (which == "all" || which == "render-is") bench::benchRenderIs(20'000'000);
   } catch (const std::exception& e) {
     std::cerr << "diffray_bench: " << e.what() << "\n";
     return 1;

@@ -58,8 +58,8 @@ double surfaceEpsilon(const Vec3& p) { return 1e-6 * std::max(1.0, p.cwiseAbs().
 
 class PathTracer {
  public:
-  PathTracer(const PreparedScene& ps, RenderResult& acc, core::FastRng& rng)
-      : ps_(ps), s_(*ps.spec), acc_(acc), rng_(rng) {}
+  PathTracer(const PreparedScene& ps, RenderResult& acc, core::FastRng& rng, bool uniform_shifts)
+      : ps_(ps), s_(*ps.spec), acc_(acc), rng_(rng), uniform_shifts_(uniform_shifts) {}
 
   void emit(const Light& l, double energy) {
     Photon ph;
@@ -134,7 +134,8 @@ class PathTracer {
     const double xi_x = rng_.uniform(), xi_y = rng_.uniform();
     double weight = 0.0;
     const transport::ScatterFate fate =
-        transport::scatterAtOccluder(occ, obj.frame, x, y, ph.lambda_nm * 1e-9, xi_x, xi_y, ph.d.data(), weight);
+        transport::scatterAtOccluder(occ, obj.frame, x, y, ph.lambda_nm * 1e-9, xi_x, xi_y, ph.d.data(), weight,
+                                    uniform_shifts_);
     if (fate == transport::ScatterFate::Absorbed) {
       acc_.absorbed_occluders += ph.energy;
       return false;
@@ -190,6 +191,7 @@ class PathTracer {
   const LightScene& s_;
   RenderResult& acc_;
   core::FastRng& rng_;
+  bool uniform_shifts_;
 };
 
 }  // namespace
@@ -215,7 +217,7 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
   };
   auto body = [&](RenderResult& acc, core::Rng& chunk_rng, std::uint64_t begin, std::uint64_t end) {
     core::FastRng rng(chunk_rng);
-    PathTracer tracer(ps, acc, rng);
+    PathTracer tracer(ps, acc, rng, options.uniform_shifts);
     for (std::uint64_t i = begin; i < end; ++i) {
       const double pick = rng.uniform() * total;
       const std::size_t l = std::min<std::size_t>(

@@ -132,13 +132,16 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
 }  // namespace
 
 ScatterFate scatterAtOccluder(const Occluder& occ, const geometry::Frame& f, double x_m, double y_m,
-                              double wavelength_m, double xi_x, double xi_y, double* dir, double& weight) {
+                              double wavelength_m, double xi_x, double xi_y, double* dir, double& weight,
+                              bool uniform_shifts) {
   const double alpha = dot(dir, f.ex), beta = dot(dir, f.ey), gamma = dot(dir, f.n);
-  const wbsdf::WbsdfTable::Sample sx = occ.table_x->sample(x_m, xi_x);
+  const wbsdf::WbsdfTable::Sample sx =
+      uniform_shifts ? occ.table_x->sampleUniform(x_m, xi_x) : occ.table_x->sample(x_m, xi_x);
   weight = sx.weight;
   double v_shift = 0.0;
   if (occ.table_y && weight != 0.0) {
-    const wbsdf::WbsdfTable::Sample sy = occ.table_y->sample(y_m, xi_y);
+    const wbsdf::WbsdfTable::Sample sy =
+        uniform_shifts ? occ.table_y->sampleUniform(y_m, xi_y) : occ.table_y->sample(y_m, xi_y);
     weight *= sy.weight;
     v_shift = sy.u_shift;
   }

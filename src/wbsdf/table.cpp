@@ -147,6 +147,18 @@ WbsdfTable::Sample WbsdfTable::sample(double x, double xi) const {
   return s;
 }
 
+WbsdfTable::Sample WbsdfTable::sampleUniform(double x, double xi) const {
+  const int row = rowOf(x);
+  if (row == -2) return {0.0, 1.0};
+  if (row < 0 || row_abs_[row] <= 0.0) return {0.0, 0.0};
+  const double pos = std::clamp(xi, 0.0, 1.0) * layout_.nu;
+  const int k = std::min(static_cast<int>(pos), layout_.nu - 1);
+  Sample s;
+  s.weight = mass(row, k) * layout_.nu;
+  s.u_shift = layout_.u0_per_m + (layout_.line_spectrum ? k + 0.5 : pos) * layout_.du_per_m;
+  return s;
+}
+
 double WbsdfTable::pdf(double x, double u) const {
   const int row = rowOf(x);
   if (row < 0 || row_abs_[row] <= 0.0) return 0.0;

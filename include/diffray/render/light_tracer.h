@@ -39,6 +39,10 @@ struct RenderOptions {
   std::uint64_t photons = 1'000'000;
   std::uint64_t seed = 1;
   std::uint64_t chunk_photons = 65536;
+  /// Draw WBSDF shifts uniformly over each table's range (weight W/p_uniform) instead of importance-sampled
+  /// by |W| (the default, paper "Implementation"): unbiased, for the render-is bench. A photon drawing a
+  /// zero-mass cell ends with weight 0 and is booked as absorbed on the occluder.
+  bool uniform_shifts = false;
   std::function<void(std::uint64_t)> on_progress;  ///< photons done per chunk (thread-safe)
 };
 

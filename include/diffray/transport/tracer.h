@@ -43,8 +43,11 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
 /// its local (x, y) with the uniforms xi_x, xi_y; `dir` (unit, world) is replaced by the outgoing direction
 /// (λ(u_i + u'), λ(v_i + v'), ±√(1 − …)), mirrored for reflecting occluders. `weight` is the signed factor
 /// on the ray's energy (0 where t = 0). Shared by trace() and the light tracer (render/light_tracer.h).
+/// `uniform_shifts`: draw u' uniformly over the tables' ranges (WbsdfTable::sampleUniform) instead of by
+/// |W|: unbiased, noisier; for the render-is bench.
 enum class ScatterFate { Continue, Absorbed, Evanescent };
 ScatterFate scatterAtOccluder(const Occluder& occ, const geometry::Frame& frame, double x_m, double y_m,
-                              double wavelength_m, double xi_x, double xi_y, double* dir, double& weight);
+                              double wavelength_m, double xi_x, double xi_y, double* dir, double& weight,
+                              bool uniform_shifts = false);
 
 }  // namespace diffray::transport

@@ -59,6 +59,10 @@ class WbsdfTable {
   };
   /// Samples u' at position x from one uniform in [0,1) (inverse of the row's |W| distribution).
   Sample sample(double x_m, double xi) const;
+  /// The unimportance-sampled alternative (the render-is bench): u' uniform over the tabulated range
+  /// [u0, u0 + nu·du) (line spectra: a cell uniformly), weight W(x, u')/p_uniform = mass·nu, so
+  /// E[weight·f(u')] = Σ mass·f, the same expectation as sample(); zero-mass cells give weight 0.
+  Sample sampleUniform(double x_m, double xi) const;
   /// Probability density of u' at x (per unit u; for line spectra, the probability of the cell).
   double pdf(double x_m, double u_shift) const;
   /// The tabulated W at (x, u'): mass/du (for line spectra, the mass of the cell).

@@ -1,0 +1,14 @@
+#pragma once
+// The render-is bench (render_is_bench.cpp; issue 6 item 4): importance-sampled WBSDF shifts against
+// uniform shifts at equal wall time, on the image-double-slit scene (validate/image_setup.h).
+#include <cstdint>
+
+namespace diffray::bench {
+
+/// Renders the double slit with importance sampling (photons_is photons), then with uniform shifts for
+/// the same wall time (photon rate from a short calibration run), and prints one JSON line: the RMS and
+/// max error of each against the absolute Fraunhofer pattern (fractions of the peak), photons, seconds,
+/// and (error_uniform/error_is)², the factor in photons (or time) uniform needs for IS's error.
+void benchRenderIs(std::uint64_t photons_is);
+
+}  // namespace diffray::bench
