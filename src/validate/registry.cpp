@@ -22,12 +22,14 @@ CaseInfo decayMetricsCase();
 CaseInfo halfPlaneCase();
 CaseInfo barrierCase();
 CaseInfo doorRoomCase();
+CaseInfo imageCdCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
                                          slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
                                          freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
-                                         diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase()};
+                                         diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase(),
+                                         imageCdCase()};
   return all;
 }
 
