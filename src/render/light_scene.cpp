@@ -123,7 +123,8 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
                  "aperture_height_m"});
     o.kind = OccluderSpec::Kind::Aperture;
   } else if (type == "grating") {
-    f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation"});
+    f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation",
+                 "reflectance"});
     o.kind = OccluderSpec::Kind::Grating;
   } else {
     f["type"].fail("unknown occluder type \"" + type + "\" (types: slit, double-slit, aperture, grating)");
@@ -153,6 +154,7 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
     case OccluderSpec::Kind::Grating:
       o.period_m = f["period_m"].positive();
       o.modulation = f["modulation"].numberIn(0.0, 1000.0);
+      if (f.has("reflectance")) o.reflectance = f["reflectance"].numberIn(0.0, 1.0);
       break;
   }
   return o;

@@ -141,6 +141,12 @@ class PathTracer {
       return false;
     }
     ph.energy *= weight;
+    if (occ.reflect && fate != transport::ScatterFate::Evanescent) {
+      // The metal layer keeps `reflectance` of the power; the rest counts as absorbed by the occluder.
+      const double kept = ph.energy * s_.occluders[obj.index].reflectance;
+      acc_.absorbed_occluders += ph.energy - kept;
+      ph.energy = kept;
+    }
     if (fate == transport::ScatterFate::Evanescent) {
       acc_.evanescent += ph.energy;
       return false;

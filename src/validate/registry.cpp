@@ -23,13 +23,14 @@ CaseInfo halfPlaneCase();
 CaseInfo barrierCase();
 CaseInfo doorRoomCase();
 CaseInfo imageDoubleSlitCase();
+CaseInfo imageCdCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
                                          slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
                                          freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
                                          diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase(),
-                                         imageDoubleSlitCase()};
+                                         imageDoubleSlitCase(), imageCdCase()};
   return all;
 }
 

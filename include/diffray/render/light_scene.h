@@ -48,7 +48,8 @@ struct DiffuseRect {
 /// An opaque rectangle whose microstructure lets light through (openings) or reflects it (gratings), all
 /// centred on the frame's origin. Slit and double slit: openings along x, uniform along y (the slits run the
 /// occluder's height) unless slit_height_m > 0. Aperture: an opening a × b (separable, design.md §1).
-/// Grating: t = exp(i(m/2)·sin(2πx/Λ)) (paper eq. 14–15), reflecting the diffracted wave (paper eq. 9).
+/// Grating: t = exp(i(m/2)·sin(2πx/Λ)) (paper eq. 14–15), reflecting the diffracted wave (paper eq. 9) with
+/// power reflectance `reflectance` (the metal layer: a CD's aluminium reflects about 0.9 of the visible).
 struct OccluderSpec {
   enum class Kind { Slit, DoubleSlit, Aperture, Grating };
   std::string name;
@@ -58,6 +59,7 @@ struct OccluderSpec {
   double slit_width_m = 0.0, slit_height_m = 0.0, spacing_m = 0.0;  ///< Slit, DoubleSlit
   double aperture_width_m = 0.0, aperture_height_m = 0.0;           ///< Aperture
   double period_m = 0.0, modulation = 0.0;                           ///< Grating (m in radians)
+  double reflectance = 1.0;                                          ///< Grating: power reflectance, [0, 1]
 };
 
 /// Point light: isotropic, radiant power power_w; with `aim` ≥ 0 its photons are drawn only toward that

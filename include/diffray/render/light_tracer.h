@@ -53,7 +53,7 @@ struct RenderResult {
   receiver::ScreenTally radiance;   ///< spectrally integrated mean radiance per pixel, with chunk scatter
   double emitted = 0;               ///< total power of the lights (W), Σ of photon energies at emission
   double on_diffuse = 0;            ///< signed energy arriving at diffuse rectangles (all bounces)
-  double absorbed_occluders = 0;   ///< stopped on the opaque parts of occluders (t = 0 there)
+  double absorbed_occluders = 0;   ///< stopped on the opaque parts of occluders (t = 0 there), and what a grating does not reflect
   double absorbed_diffuse = 0;     ///< ended at diffuse rectangles (not reflected on)
   double evanescent = 0, escaped = 0, bounce_limit = 0;
   double scored_positive = 0, scored_negative = 0;  ///< Σ ΔP > 0 and Σ |ΔP| < 0 over every camera score
