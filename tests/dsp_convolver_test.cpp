@@ -1,5 +1,5 @@
-// The partitioned FFT convolver against direct time-domain convolution written here (shares no code with
-// the FFT path): random block sizes, IR lengths, input lengths and call sizes; a Dirac gives the IR back;
+// The partitioned FFT convolver against direct time-domain convolution (tests/dsp_oracle.h, no code shared
+// with the FFT path): random block sizes, IR lengths, input lengths and call sizes; a Dirac gives the IR back;
 // reset() forgets the past; the multichannel pairings.
 #include <gtest/gtest.h>
 
@@ -12,41 +12,17 @@
 #include "diffray/core/error.h"
 #include "diffray/dsp/multichannel_convolver.h"
 #include "diffray/dsp/partitioned_convolver.h"
+#include "dsp_oracle.h"
 
 namespace {
 
 using diffray::dsp::MultichannelConvolver;
 using diffray::dsp::PartitionedConvolver;
 
-/// y[t] = Σ_k h[k]·x[t−k], t = 0 … |x|+|h|−2, in double.
-std::vector<double> directConvolution(const std::vector<float>& x, const std::vector<float>& h) {
-  std::vector<double> y(x.size() + h.size() - 1, 0.0);
-  for (size_t i = 0; i < x.size(); ++i)
-    for (size_t k = 0; k < h.size(); ++k) y[i + k] += static_cast<double>(x[i]) * h[k];
-  return y;
-}
+using diffray::test::directConvolution;
+using diffray::test::runInRandomCalls;
 
-std::vector<float> noise(std::mt19937& rng, size_t n) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<float> v(n);
-  for (float& s : v) s = u(rng);
-  return v;
-}
-
-/// Feeds x then |h|−1 zeros through `conv` in calls of random size (1 … 3 blocks), returning all output.
-std::vector<float> runInRandomCalls(PartitionedConvolver& conv, const std::vector<float>& x, long ir_length,
-                                    std::mt19937& rng) {
-  std::vector<float> in(x);
-  in.resize(x.size() + static_cast<size_t>(ir_length) - 1, 0.0f);
-  std::vector<float> out(in.size(), 0.0f);
-  std::uniform_int_distribution<long> call(0, 3L * conv.blockSize());
-  for (size_t pos = 0; pos < in.size();) {
-    const long n = std::min<long>(call(rng), static_cast<long>(in.size() - pos));
-    conv.process(in.data() + pos, out.data() + pos, n);
-    pos += static_cast<size_t>(n);
-  }
-  return out;
-}
+std::vector<float> noise(std::mt19937& rng, size_t n) { return diffray::test::uniformNoise(rng, n); }
 
 double maxAbs(const std::vector<double>& v) {
   double m = 0.0;

@@ -21,18 +21,9 @@ using diffray::test::directConvolution;
 using diffray::test::relativeError;
 using diffray::test::uniformNoise;
 
-/// Feeds x then |h|−1 zeros through `conv` in calls of random size (0 … 3 head blocks).
+/// x then |h|−1 zeros through `conv` in calls of random size (0 … 3 head blocks): the whole convolution.
 std::vector<float> runInRandomCalls(NonUniformConvolver& conv, const std::vector<float>& x, std::mt19937& rng) {
-  std::vector<float> in(x);
-  in.resize(x.size() + static_cast<size_t>(conv.irLength()) - 1, 0.0f);
-  std::vector<float> out(in.size(), 0.0f);
-  std::uniform_int_distribution<long> call(0, 3L * conv.blockSize());
-  for (size_t pos = 0; pos < in.size();) {
-    const long n = std::min<long>(call(rng), static_cast<long>(in.size() - pos));
-    conv.process(in.data() + pos, out.data() + pos, n);
-    pos += static_cast<size_t>(n);
-  }
-  return out;
+  return diffray::test::runInRandomCalls(conv, x, conv.irLength(), rng);
 }
 
 TEST(NonUniformConvolver, StagesGrowByEightFromTheBlock) {

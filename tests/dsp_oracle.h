@@ -34,4 +34,20 @@ inline double relativeError(const std::vector<float>& got, const std::vector<dou
   return peak > 0.0 ? err / peak : err;
 }
 
+/// Feeds x then ir_length − 1 zeros through `conv` (any convolver with process(in, out, n) and blockSize())
+/// in calls of random size (0 … 3 blocks), returning all of the output: the whole linear convolution.
+template <class Convolver>
+std::vector<float> runInRandomCalls(Convolver& conv, const std::vector<float>& x, long ir_length, std::mt19937& rng) {
+  std::vector<float> in(x);
+  in.resize(x.size() + static_cast<size_t>(ir_length) - 1, 0.0f);
+  std::vector<float> out(in.size(), 0.0f);
+  std::uniform_int_distribution<long> call(0, 3L * conv.blockSize());
+  for (size_t pos = 0; pos < in.size();) {
+    const long n = std::min<long>(call(rng), static_cast<long>(in.size() - pos));
+    conv.process(in.data() + pos, out.data() + pos, n);
+    pos += static_cast<size_t>(n);
+  }
+  return out;
+}
+
 }  // namespace diffray::test

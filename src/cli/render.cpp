@@ -32,17 +32,10 @@ struct RenderCliOptions {
 
 void checkOutput(const std::string& out, const std::string& in) {
   namespace fs = std::filesystem;
-  if (fs::path(out).extension() != ".png") throw core::InputError(out, "the output must be a .png file");
-  if (!fs::is_directory(fs::absolute(out).parent_path())) throw core::InputError(out, "its folder does not exist");
+  checkOutputFile(out, ".png");
   std::error_code ec;
   if (fs::equivalent(out, in, ec) || fs::equivalent(withExtension(out, ".json"), in, ec))
     throw core::InputError(out, "would overwrite the scene file");
-}
-
-std::uint64_t wholeCount(const char* option, double v) {
-  if (!(v >= 1 && v <= 1e13 && std::floor(v) == v))
-    throw core::InputError(option, "must be a whole number >= 1 (e.g. 2000000 or 2e6)");
-  return static_cast<std::uint64_t>(v);
 }
 
 }  // namespace

@@ -19,6 +19,9 @@ struct CommonOptions {
   bool json = false;
 };
 
+/// A count given as a double (2e6 accepted): a whole number in [1, 1e13], else core::InputError naming `option`.
+std::uint64_t wholeCount(const std::string& option, double v);
+
 /// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
 
