@@ -8,7 +8,8 @@
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
 //                block's duration (realtime_bench.cpp).
 //   render-is:   the light tracer's importance-sampled WBSDF shifts vs uniform shifts at equal wall time,
-//                errors against the absolute Fraunhofer double slit (render_is_bench.cpp).
+//                errors against the absolute Fraunhofer double slit, and on the CD scene against an 8× longer
+//                importance-sampled render (render_is_bench.cpp).
 #include <embree3/rtcore.h>
 #include <tbb/parallel_reduce.h>
 
@@ -202,7 +203,10 @@ int main(int argc, char** argv) {
       benchConvergence("slit-fraunhofer", true);
     }
     if (which == "all" || which == "realtime") bench::benchRealtime(20.0);
-    if (which == "all" || which == "render-is") bench::benchRenderIs(20'000'000);
+    if (which == "all" || which == "render-is") {
+      bench::benchRenderIs(20'000'000);
+      bench::benchRenderIsScene(std::string(DIFFRAY_BENCH_ROOMS) + "/light/cd.json", "cd", 10'000'000);
+    }
   } catch (const std::exception& e) {
     std::cerr << "diffray_bench: " << e.what() << "\n";
     return 1;
