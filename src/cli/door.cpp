@@ -194,7 +194,16 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     progress.finish();
     for (const auto& w : cr.warnings) std::cerr << "diffray: warning: " << w << "\n";
 
-    // IRs at the dry signal's rate, key frames, levels.
+    // Band energies per step and chosen listener, and their levels re the open door (step 0), once.
+    std::vector<std::vector<core::BandArray>> energy(schedule.size()), level_db(schedule.size());
+    for (std::size_t k = 0; k < schedule.size(); ++k)
+      for (std::size_t i = 0; i < chosen.size(); ++i) {
+        energy[k].push_back(door::bandEnergies(cr.responses[k][chosen[i]]));
+        level_db[k].push_back(core::bandFill(0.0));
+        for (int b = 0; b < room.bands.size(); ++b) level_db[k][i][b] = toDb(energy[k][i][b] / energy[0][i][b]);
+      }
+
+    // IRs at the dry signal's rate, key frames, and the levels for the sidecars.
     std::vector<std::vector<std::vector<float>>> irs(schedule.size());
     std::vector<long> keys;
     nlohmann::ordered_json steps = nlohmann::ordered_json::array();
@@ -205,19 +214,19 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     for (std::size_t k = 0; k < schedule.size(); ++k) {
       keys.push_back(std::lround(schedule[k].time_s * fs));
       nlohmann::ordered_json levels = nlohmann::ordered_json::object(), energies = nlohmann::ordered_json::object();
-      for (int l : chosen) {
+      for (std::size_t i = 0; i < chosen.size(); ++i) {
+        const int l = chosen[i];
         const std::vector<double> h = ir::synthesize(cr.responses[k][l], synth_fs, cr.length_s, cr.volume_m3,
                                                      cr.speed_of_sound_m_s, common.seed + 7919ull * l,
                                                      ir::Phasing::Coherent);
         irs[k].emplace_back(h.begin(), h.end());
         if (synth_fs != fs) irs[k].back() = dsp::resampleImpulseResponse(irs[k].back(), 1, synth_fs, fs);
-        const core::BandArray e = door::bandEnergies(cr.responses[k][l]), e0 = door::bandEnergies(cr.responses[0][l]);
         nlohmann::ordered_json row = nlohmann::ordered_json::array(), absolute = nlohmann::ordered_json::array();
-        for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(e[b]);
+        for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(energy[k][i][b]);
         energies[room.listeners[l].name] = absolute;
         csv << k << ',' << schedule[k].time_s << ',' << schedule[k].gap_m << ',' << room.listeners[l].name;
         for (int b = 0; b < room.bands.size(); ++b) {
-          const double db = toDb(e[b] / e0[b]);
+          const double db = level_db[k][i][b];
           row.push_back(std::isfinite(db) ? nlohmann::ordered_json(std::round(db * 100.0) / 100.0) : nlohmann::ordered_json());
           csv << ',' << db;
         }
@@ -289,10 +298,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     bool signed_noise = false;
     for (std::size_t k = 0; k < schedule.size(); ++k) {
       std::printf("%8.3f %8.4f", schedule[k].time_s, schedule[k].gap_m);
-      const core::BandArray e = door::bandEnergies(cr.responses[k][chosen[0]]);
-      const core::BandArray e0 = door::bandEnergies(cr.responses[0][chosen[0]]);
       for (int b = 0; b < room.bands.size(); ++b) {
-        const double db = toDb(e[b] / e0[b]);
+        const double db = level_db[k][0][b];
         if (std::isfinite(db)) {
           std::printf(" %7.1f", db);
         } else {
