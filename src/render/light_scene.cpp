@@ -126,8 +126,12 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
     f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation",
                  "reflectance"});
     o.kind = OccluderSpec::Kind::Grating;
+  } else if (type == "lens") {
+    f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "aperture_width_m",
+                 "aperture_height_m", "focal_length_m"});
+    o.kind = OccluderSpec::Kind::Lens;
   } else {
-    f["type"].fail("unknown occluder type \"" + type + "\" (types: slit, double-slit, aperture, grating)");
+    f["type"].fail("unknown occluder type \"" + type + "\" (types: slit, double-slit, aperture, grating, lens)");
   }
   o.name = f.has("name") ? f["name"].string() : type + std::to_string(index + 1);
   parseRect(f, o.frame, o.half_x_m, o.half_y_m);
@@ -145,6 +149,9 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
       if (o.slit_height_m > 2.0 * o.half_y_m) f["slit_height_m"].fail("exceeds the occluder's height_m");
       break;
     }
+    case OccluderSpec::Kind::Lens:
+      o.focal_length_m = f["focal_length_m"].positive();
+      [[fallthrough]];
     case OccluderSpec::Kind::Aperture:
       o.aperture_width_m = f["aperture_width_m"].positive();
       o.aperture_height_m = f["aperture_height_m"].positive();

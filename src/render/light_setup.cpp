@@ -23,11 +23,13 @@ struct ShiftBounds {
 };
 
 // Δ along the occluder's axes between every incident direction (lights, other objects) and every outgoing
-// one (other objects), sampled at the occluder's centre and corners.
-ShiftBounds shiftBounds(const LightScene& s, int k) {
+// one (other objects), sampled at the points `here` of the occluder (its centre and corners), plus
+// `deflection` (the direction cosines' change a lens adds at those points, along ex and ey, which the table
+// need not hold: lensShiftBounds).
+ShiftBounds shiftBounds(const LightScene& s, int k, const std::vector<Vec3>& here, double deflection_x = 0.0,
+                        double deflection_y = 0.0) {
   const OccluderSpec& occ = s.occluders[k];
   const geometry::Frame& f = occ.frame;
-  const std::vector<Vec3> here = rectPoints(f, occ.half_x_m, occ.half_y_m);
   std::vector<Vec3> others;  // points of every other object
   for (int i = 0; i < s.targetCount(); ++i) {
     if (i == static_cast<int>(s.rects.size()) + k) continue;
@@ -51,9 +53,35 @@ ShiftBounds shiftBounds(const LightScene& s, int k) {
   ShiftBounds b;
   for (const Vec3& i : in_dirs)
     for (const Vec3& o : out_dirs) {
-      b.dx = std::max(b.dx, std::abs(o.dot(f.ex) - i.dot(f.ex)));
-      b.dy = std::max(b.dy, std::abs(o.dot(f.ey) - i.dot(f.ey)));
+      b.dx = std::max(b.dx, std::abs(o.dot(f.ex) - i.dot(f.ex) - deflection_x));
+      b.dy = std::max(b.dy, std::abs(o.dot(f.ey) - i.dot(f.ey) - deflection_y));
     }
+  return b;
+}
+
+ShiftBounds shiftBounds(const LightScene& s, int k) {
+  const OccluderSpec& occ = s.occluders[k];
+  return shiftBounds(s, k, rectPoints(occ.frame, occ.half_x_m, occ.half_y_m));
+}
+
+// A lens leaves a ray at α_o = α_i + λu' − x/f (transport::Occluder::focal_length_m): the table draws only
+// u', the diffraction around the geometric ray, so its range is the largest |α_o − α_i + x/f| (and along y)
+// that reaches an object, at each point of the opening (t = 0 elsewhere, so the plate's corners need no
+// shift) with that point's own deflection. Taking the plate's corners and leaving the deflection in instead
+// would both miss shifts (where −x/f and α_o − α_i have opposite signs) and cover the whole geometric
+// deflection of the lens, many times the diffraction lobe near the focus: a far wider table whose u-cells,
+// under the 8-million-cell cap, grow too coarse to resolve the focal spot.
+ShiftBounds lensShiftBounds(const LightScene& s, int k) {
+  const OccluderSpec& occ = s.occluders[k];
+  const geometry::Frame& f = occ.frame;
+  ShiftBounds b;
+  for (const Vec3& h : rectPoints(f, 0.5 * occ.aperture_width_m, 0.5 * occ.aperture_height_m)) {
+    const Vec3 r = h - f.origin;
+    const ShiftBounds at =
+        shiftBounds(s, k, {h}, -r.dot(f.ex) / occ.focal_length_m, -r.dot(f.ey) / occ.focal_length_m);
+    b.dx = std::max(b.dx, at.dx);
+    b.dy = std::max(b.dy, at.dy);
+  }
   return b;
 }
 
@@ -93,7 +121,8 @@ std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_forc
       if (fp / z < ratio) ratio = fp / z, throw_m = z;
     }
     const double fp_at_throw = ratio * throw_m;
-    const ShiftBounds b = shiftBounds(s, static_cast<int>(k));
+    const ShiftBounds b = spec.kind == OccluderSpec::Kind::Lens ? lensShiftBounds(s, static_cast<int>(k))
+                                                                 : shiftBounds(s, static_cast<int>(k));
     std::shared_ptr<wbsdf::Microstructure> mx, my;
     transport::Occluder occ;
     switch (spec.kind) {
@@ -112,6 +141,11 @@ std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_forc
       case OccluderSpec::Kind::Grating:
         mx = std::make_shared<wbsdf::PhaseGrating>(spec.period_m, spec.modulation);
         occ.reflect = true;
+        break;
+      case OccluderSpec::Kind::Lens:  // the opening's tables; the lens's deflection is geometric (scene.h)
+        mx = wbsdf::Openings::slit(spec.aperture_width_m);
+        my = wbsdf::Openings::slit(spec.aperture_height_m);
+        occ.focal_length_m = spec.focal_length_m;
         break;
     }
     occ.table_x = wbsdf::WbsdfTable::build(*mx, axisTableOptions(*mx, b.dx, lambda_min, lambda_max, fp_at_throw, throw_m));

@@ -147,8 +147,12 @@ ScatterFate scatterAtOccluder(const Occluder& occ, const geometry::Frame& f, dou
   }
   if (weight == 0.0) return ScatterFate::Absorbed;
   // Direction cosines are λ·u (design.md §1); an imaginary γ is an evanescent wave: the ray ends.
-  const double alpha_o = alpha + wavelength_m * sx.u_shift;
-  const double beta_o = beta + wavelength_m * v_shift;
+  double alpha_o = alpha + wavelength_m * sx.u_shift;
+  double beta_o = beta + wavelength_m * v_shift;
+  if (occ.focal_length_m > 0.0) {  // a thin lens: the sheared WDF (scene.h, Occluder::focal_length_m)
+    alpha_o -= x_m / occ.focal_length_m;
+    beta_o -= y_m / occ.focal_length_m;
+  }
   const double gamma_sq = 1.0 - alpha_o * alpha_o - beta_o * beta_o;
   if (gamma_sq <= 0.0) return ScatterFate::Evanescent;
   double gamma_o = std::copysign(std::sqrt(gamma_sq), gamma);

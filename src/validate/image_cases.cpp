@@ -31,6 +31,27 @@ DoubleSlitImageSetup doubleSlitImageSetup(const Params& p) {
   return s;
 }
 
+double WallView::tanHalf() const { return std::tan(0.5 * fov_deg * kPi / 180.0); }
+double WallView::pitch() const { return 2.0 * tanHalf() / width; }
+double WallView::topY() const { return 0.5 * pitch() * height; }
+double WallView::columnX(int ix) const { return -(-tanHalf() + (ix + 0.5) * pitch()) * distance_m; }
+double WallView::rowY(int iy) const { return (topY() - (iy + 0.5) * pitch()) * distance_m; }
+
+double WallView::pixelMean(int ix, int iy, const std::function<double(double, double)>& radiance) const {
+  const auto& gl = core::gaussLegendre(8);
+  const double T = tanHalf(), p = pitch(), Ty = topY(), D = distance_m;
+  double num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < gl.nodes.size(); ++i)
+    for (std::size_t j = 0; j < gl.nodes.size(); ++j) {
+      const double X = -T + (ix + 0.5 + 0.5 * gl.nodes[i]) * p;
+      const double Y = Ty - (iy + 0.5 + 0.5 * gl.nodes[j]) * p;
+      const double w = gl.weights[i] * gl.weights[j] * std::pow(1.0 + X * X + Y * Y, -1.5);
+      num += w * radiance(-X * D, Y * D);
+      den += w;
+    }
+  return num / den;
+}
+
 render::LightScene doubleSlitImageScene(const DoubleSlitImageSetup& s) {
   using core::Vec3;
   const double L = s.distance_m;
@@ -80,10 +101,10 @@ CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptio
   const render::RenderResult img = render::renderLight(*ps, ro);
   const double seconds_render = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
 
-  // The oracle's camera: looking down +z with up +y, right = f × up = (−1, 0, 0). The image-plane point
-  // (X, Y) (distance 1) sees the wall point x = −X·D, y = Y·D, D = 0.4·L the camera-to-wall distance.
+  // The oracle's camera (WallView): D = 0.4·L the camera-to-wall distance.
   const double L = s.distance_m, D = 0.4 * L, lambda = s.wavelength_m;
-  const double T = std::tan(0.5 * s.fov_deg * kPi / 180.0), pitch = 2.0 * T / s.width, Ty = 0.5 * pitch * s.height;
+  const WallView view{D, s.fov_deg, s.width, s.height};
+  const double pitch = view.pitch(), Ty = view.topY();
   const double I0 = s.power_w / (4.0 * s.beam_half_x_m * s.beam_half_y_m);
   auto radiance = [&](double x_wall) {  // ρ/π · I₀ |T(u)|² cos²θ/(λ r)
     const double u = reference::screenU(x_wall, L, lambda);
@@ -97,7 +118,6 @@ CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptio
     if (std::max(std::abs(y_top), std::abs(y_bottom)) < s.beam_half_y_m * (1.0 - 1e-9)) rows.push_back(iy);
   }
   if (rows.empty()) throw core::InputError("image-double-slit", "no image row lies inside the beam");
-  const auto& gl = core::gaussLegendre(8);
   const double nrows = static_cast<double>(rows.size());
   CaseResult r;
   r.name = "image-double-slit";
@@ -106,22 +126,12 @@ CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptio
     Row row;
     double var = 0.0;
     for (int iy : rows) {
-      // Mean radiance over the pixel's solid angle: dω = dX dY / (1 + X² + Y²)^{3/2}.
-      double num = 0.0, den = 0.0;
-      for (std::size_t i = 0; i < gl.nodes.size(); ++i)
-        for (std::size_t j = 0; j < gl.nodes.size(); ++j) {
-          const double X = -T + (ix + 0.5 + 0.5 * gl.nodes[i]) * pitch;
-          const double Y = Ty - (iy + 0.5 + 0.5 * gl.nodes[j]) * pitch;
-          const double w = gl.weights[i] * gl.weights[j] * std::pow(1.0 + X * X + Y * Y, -1.5);
-          num += w * radiance(-X * D);
-          den += w;
-        }
-      row.reference += num / den / nrows;
+      row.reference += view.pixelMean(ix, iy, [&](double x, double) { return radiance(x); }) / nrows;
       row.traced += img.pixelRadiance(ix, iy) / nrows;
       var += std::pow(img.pixelStdError(ix, iy) / nrows, 2);
     }
     row.std_error = std::sqrt(var);
-    row.x_m = -(-T + (ix + 0.5) * pitch) * D;
+    row.x_m = view.columnX(ix);
     r.rows.push_back(row);
   }
   r.negative_energy_fraction = img.negativePixelFraction();

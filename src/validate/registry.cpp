@@ -24,13 +24,15 @@ CaseInfo barrierCase();
 CaseInfo doorRoomCase();
 CaseInfo imageDoubleSlitCase();
 CaseInfo imageCdCase();
+CaseInfo imageLensPsfCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
                                          slitFresnelCase(),    doorRsCase(),     gratingOrdersCase(),
                                          freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
                                          diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase(),
-                                         imageDoubleSlitCase(), imageCdCase()};
+                                         imageDoubleSlitCase(), imageCdCase(),
+                                         imageLensPsfCase()};
   return all;
 }
 

@@ -50,14 +50,19 @@ struct DiffuseRect {
 /// occluder's height) unless slit_height_m > 0. Aperture: an opening a × b (separable, design.md §1).
 /// Grating: t = exp(i(m/2)·sin(2πx/Λ)) (paper eq. 14–15), reflecting the diffracted wave (paper eq. 9) with
 /// power reflectance `reflectance` (the metal layer: a CD's aluminium reflects about 0.9 of the visible).
+/// Lens: an ideal thin lens of focal length focal_length_m behind a rectangular opening a × b centred on the
+/// frame's origin, t = rect(x/a)·rect(y/b)·exp(−iπ(x² + y²)/(λf)) (transport::Occluder::focal_length_m:
+/// the opening's WBSDF plus the geometric deflection). Rectangular only: a circular pupil's WDF is not
+/// separable in x and y.
 struct OccluderSpec {
-  enum class Kind { Slit, DoubleSlit, Aperture, Grating };
+  enum class Kind { Slit, DoubleSlit, Aperture, Grating, Lens };
   std::string name;
   Kind kind = Kind::Slit;
   geometry::Frame frame;
   double half_x_m = 0.01, half_y_m = 0.01;
   double slit_width_m = 0.0, slit_height_m = 0.0, spacing_m = 0.0;  ///< Slit, DoubleSlit
-  double aperture_width_m = 0.0, aperture_height_m = 0.0;           ///< Aperture
+  double aperture_width_m = 0.0, aperture_height_m = 0.0;           ///< Aperture, Lens
+  double focal_length_m = 0.0;                                       ///< Lens: > 0
   double period_m = 0.0, modulation = 0.0;                           ///< Grating (m in radians)
   double reflectance = 1.0;                                          ///< Grating: power reflectance, [0, 1]
 };

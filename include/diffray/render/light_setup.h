@@ -10,6 +10,8 @@
 //  - shift range |u'| ≤ 1.02·Δ/λ_min, Δ the largest change of the direction cosine along that axis between
 //    any incident direction (from the lights and the other objects) and any outgoing one (to the other
 //    objects), capped at 2/λ_min (every propagating shift). Shifts beyond it would reach no object.
+//    A lens: Δ is taken with its geometric deflection −x/f, −y/f out, over the points of its opening (the
+//    table holds only the diffraction around the geometric ray; light_setup.cpp, lensShiftBounds).
 //  - du: a u-cell moves a landing point by up to λ_max·z·du (z the throw from the occluder to a diffuse
 //    rectangle); du keeps that under 1/8 of the pixel footprint there (camera pixel pitch × distance), over
 //    every rectangle. Gratings: their lines (wbsdf/table.h).

@@ -23,6 +23,13 @@ struct Occluder {
   std::shared_ptr<const wbsdf::WbsdfTable> table_x;  ///< W_x(x, u'): required
   std::shared_ptr<const wbsdf::WbsdfTable> table_y;  ///< W_y(y, v'): null = uniform along y (v' = 0)
   bool reflect = false;  ///< mirror the outgoing direction (paper eq. 9, eq:reflection)
+  /// > 0: an ideal thin (spherical) lens of this focal length centred on the frame's origin over the tables'
+  /// opening, t = t_x(x)·t_y(y)·exp(−iπ(x² + y²)/(λf)) (paper eq. 11, eq:microstructure). Its WDF is the
+  /// opening's sheared, W_t(x, u) = W_x(x, u + x/(λf)) (paper eq. 2: the quadratic phases of t(x ± s/2)
+  /// differ by 2πxs/(λf), linear in s), so a ray leaves with the tables' shift plus the geometric deflection
+  /// −x/f, −y/f of its direction cosines along ex, ey (scatterAtOccluder). Paraxial, as the phase is; only
+  /// separable (rectangular) openings. 0: no lens.
+  double focal_length_m = 0;
 };
 
 struct Absorber {

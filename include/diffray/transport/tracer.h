@@ -41,7 +41,8 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
 
 /// One WBSDF scattering at an occluder (paper eq. 8–10): shifts (u', v') drawn from the occluder's tables at
 /// its local (x, y) with the uniforms xi_x, xi_y; `dir` (unit, world) is replaced by the outgoing direction
-/// (λ(u_i + u'), λ(v_i + v'), ±√(1 − …)), mirrored for reflecting occluders. `weight` is the signed factor
+/// (λ(u_i + u'), λ(v_i + v'), ±√(1 − …)) (less x/f, y/f for a lens: Occluder::focal_length_m), mirrored for
+/// reflecting occluders. `weight` is the signed factor
 /// on the ray's energy (0 where t = 0). Shared by trace() and the light tracer (render/light_tracer.h).
 /// `uniform_shifts`: draw u' uniformly over the tables' ranges (WbsdfTable::sampleUniform) instead of by
 /// |W|: unbiased, noisier; for the render-is bench.

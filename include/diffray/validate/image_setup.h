@@ -29,6 +29,22 @@ struct DoubleSlitImageSetup {
 DoubleSlitImageSetup doubleSlitImageSetup(const Params& p);
 render::LightScene doubleSlitImageScene(const DoubleSlitImageSetup& s);
 
+/// The oracles' pinhole camera (its own geometry, not render::Camera's): on the z axis at distance_m in front
+/// of a wall normal to z, looking down +z with up +y, so right = −x; horizontal field fov_deg over width ×
+/// height square pixels. The image-plane point (X, Y) (at distance 1) sees the wall point (−X·D, Y·D).
+struct WallView {
+  double distance_m = 1.0, fov_deg = 10.0;
+  int width = 1, height = 1;
+  double tanHalf() const;  ///< T = tan(fov/2): the image plane spans X ∈ [−T, T]
+  double pitch() const;    ///< one pixel in image-plane units, 2T/width
+  double topY() const;     ///< the image's top edge, Y = pitch·height/2
+  double columnX(int ix) const;  ///< wall x seen through the centre of column ix
+  double rowY(int iy) const;     ///< wall y seen through the centre of row iy
+  /// Mean of radiance(x_wall, y_wall) over pixel (ix, iy)'s solid angle, dω = dX dY/(1 + X² + Y²)^{3/2}
+  /// (Gauss–Legendre 8 × 8 in image-plane coordinates).
+  double pixelMean(int ix, int iy, const std::function<double(double, double)>& radiance) const;
+};
+
 struct ImageRunOptions {
   std::uint64_t photons = 0;
   std::uint64_t seed = 1;
@@ -40,5 +56,24 @@ struct ImageRunOptions {
 /// over those rows: the pattern does not depend on y there) against the pixel-averaged oracle.
 /// Rows: one per column, x_m the column's centre on the wall. extra: rows_averaged, seconds_render.
 CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptions& o);
+
+/// The lens image (rooms/light/lens-psf.json, src/validate/image_lens_case.cpp): a laser beam exactly filling
+/// a thin lens's rectangular opening a × b (focal length f, at z = 0, transport::Occluder::focal_length_m), a
+/// diffuse wall in the focal plane z = f, the camera on the axis at camera_distance_m before the wall, its
+/// field spanning `lobes` first zeros λf/a either side. Oracle: the focal-plane (Fraunhofer) pattern of the
+/// opening, E(x, y) = I₀·(ab/λf)²·sinc²(ax/λf)·sinc²(by/λf), I₀ = P/(ab) (paraxial, as the lens is), times
+/// ρ/π, averaged over each pixel.
+struct LensPsfImageSetup {
+  double wavelength_m = 550e-9, aperture_width_m = 1e-3, aperture_height_m = 1e-3, focal_length_m = 0.5;
+  double albedo = 0.9, power_w = 1e-3, camera_distance_m = 0.05, lobes = 4.0;
+  int width = 121, height = 121;  ///< odd: a central row and column of pixels
+  double fovDeg() const;  ///< the field that spans `lobes` zeros of the wider lobe either side
+};
+/// From the case's parameters (wavelength, width, height, focal, lobes, pixels).
+LensPsfImageSetup lensPsfImageSetup(const Params& p);
+render::LightScene lensPsfImageScene(const LensPsfImageSetup& s);
+/// Renders and scores the central row (label "row", x_m its columns' wall x) then the central column (label
+/// "column", y_m) against the oracle, absolute radiance, no fitted scale. extra: seconds_render.
+CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o);
 
 }  // namespace diffray::validate
