@@ -90,7 +90,7 @@ CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o)
   const render::LightScene sc = lensPsfImageScene(s);
   const auto ps = render::prepareScene(sc);
   render::RenderOptions ro;
-  ro.photons = o.photons ? o.photons : 40'000'000;
+  ro.photons = o.photons ? o.photons : 80'000'000;
   ro.seed = o.seed;
   ro.uniform_shifts = o.uniform_shifts;
   ro.on_progress = o.on_progress;
@@ -133,7 +133,7 @@ CaseInfo imageLensPsfCase() {
   CaseInfo c{"image-lens-psf",
              "rendered thin-lens PSF (diffray render): the focal-plane image's central row and column vs sinc²",
              {},
-             40'000'000,
+             80'000'000,
              {}};
   c.params = {{"wavelength", {550e-9}, "laser wavelength (m), visible"},
               {"width", {1e-3}, "lens opening along x, a (m)"},
