@@ -379,6 +379,20 @@ expect_error "render: zero exposure"      render "$tmp/light.json" -o "$png" --p
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{"type": "grating", "centre": [0,0,0.2], "normal": [0,0,1], "width_m": 0.1, "height_m": 0.1, "period_m": 1.6e-6, "modulation": 3, "reflectance": 1.5}]}\n' "$light" >"$tmp/refl.json"
 expect_error "render: reflectance > 1"    render "$tmp/refl.json" -o "$png"
 expect_error "validate image-cd: 900 nm"  validate image-cd --wavelength 900e-9 --rays 1000 "$csv"
+lens='"type": "lens", "centre": [0,0,0.2], "normal": [0,0,1], "width_m": 0.01, "height_m": 0.01'
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "aperture_height_m": 1e-3, "focal_length_m": 0}]}\n' "$light" "$lens" >"$tmp/f0.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "aperture_height_m": 1e-3, "focal_length_m": -0.5}]}\n' "$light" "$lens" >"$tmp/fneg.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "aperture_height_m": 1e-3}]}\n' "$light" "$lens" >"$tmp/fmissing.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "focal_length_m": 0.5}]}\n' "$light" "$lens" >"$tmp/nob.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 0.02, "aperture_height_m": 1e-3, "focal_length_m": 0.5}]}\n' "$light" "$lens" >"$tmp/wide.json"
+expect_clean "render: lens focal 0"        "out.csv*" "focal_length_m: must be > 0"  render "$tmp/f0.json" -o "$png"
+expect_clean "render: lens focal < 0"      "out.csv*" "focal_length_m: must be > 0"  render "$tmp/fneg.json" -o "$png"
+expect_clean "render: lens without focal"  "out.csv*" "focal_length_m"               render "$tmp/fmissing.json" -o "$png"
+expect_clean "render: lens without height" "out.csv*" "aperture_height_m"            render "$tmp/nob.json" -o "$png"
+expect_clean "render: lens wider than plate" "out.csv*" "aperture_width_m"           render "$tmp/wide.json" -o "$png"
+expect_error "validate image-lens-psf: even pixels" validate image-lens-psf --pixels 60 --rays 1000 "$csv"
+expect_error "validate image-lens-psf: infrared"    validate image-lens-psf --wavelength 1e-6 --rays 1000 "$csv"
+expect_error "validate image-lens-psf: strong lens" validate image-lens-psf --focal 1e-3 --rays 1000 "$csv"
 # The good path writes the PNG (by its signature), the PFM and the sidecar.
 "$bin" render "$tmp/light.json" -o "$tmp/good.png" --photons 2000 >/dev/null 2>&1
 if [ "$(head -c 8 "$tmp/good.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&

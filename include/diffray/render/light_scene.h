@@ -1,7 +1,7 @@
 #pragma once
 // A light scene (issue 6, rooms/light/README.md): diffuse rectangles with a (spectral) albedo, WBSDF
-// occluders (slit, double slit, rectangular aperture, reflecting phase grating), lights (a point light or a
-// collimated laser beam, each with a spectrum) and a pinhole camera. Units: metres, watts, nanometres for
+// occluders (slit, double slit, rectangular aperture, reflecting phase grating, thin lens), lights (a point
+// light or a collimated laser beam, each with a spectrum) and a pinhole camera. Units: metres, watts, nanometres for
 // wavelengths; positions and directions in the world frame. Rectangles and occluders are centred on
 // `frame.origin` with half-extents along frame.ex (x, the width) and frame.ey (y, the height); the frame comes
 // from a normal and an up vector: ey = up projected on the plane, ex = ey × normal, so n = ex × ey.
