@@ -8,6 +8,8 @@
 //  - the rendered focal-plane image (validate image-lens-psf at reduced photons): its central row and column
 //    against the opening's Fraunhofer pattern I₀(ab/λf)²·sinc²(ax/λf)·sinc²(by/λf)·ρ/π averaged over each
 //    pixel, absolute radiance (validate/image_setup.h), within the pixels' standard errors;
+//  - a point source at s_o images at s_i with 1/s_o + 1/s_i = 1/f: the wall there shows the same pattern with
+//    λs_i for λf (the thin-lens equation), in absolute radiance;
 //  - the lens's table range leaves the geometric deflection out (render/light_setup.h).
 #include <gtest/gtest.h>
 
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "diffray/render/light_setup.h"
+#include "diffray/render/light_tracer.h"
 #include "diffray/transport/tracer.h"
 #include "diffray/validate/image_setup.h"
 #include "diffray/wbsdf/microstructure.h"
@@ -152,6 +155,55 @@ TEST(StatRenderLens, FocalPlaneImageMatchesTheOpeningsFraunhoferPattern) {
   EXPECT_GT(r.rows[30].reference, 0.9 * peak);
   EXPECT_LE(r.rows[30].reference, peak);
   diffray::testing::expectRowsMatch(r);
+}
+
+// A point light 1.5 m before a 3 × 3 mm lens (f = 0.5 m): the wall at s_i = 0.75 m from 1/s_o + 1/s_i = 1/f
+// shows the opening's Fraunhofer pattern at that distance, I₀(ab/λs_i)²·sinc²(ax/λs_i)·sinc²(by/λs_i) with
+// I₀ = P/(4π s_o²), first zeros at ±0.14 mm. The opening is wide enough (depth of focus λ/NA² = 14 cm) that a
+// lens of 1.1 f, imaging 12 cm behind the wall (defocus 0.37 λ at the opening's edge), must fail it.
+validate::LensPsfImageSetup pointSourceSetup() {
+  validate::LensPsfImageSetup s;
+  s.aperture_width_m = s.aperture_height_m = 3e-3;
+  s.source_distance_m = 1.5;
+  s.width = s.height = 31;
+  s.lobes = 2.5;
+  return s;
+}
+
+TEST(StatRenderLens, PointSourceImagesWhereTheThinLensEquationSays) {
+  const validate::LensPsfImageSetup s = pointSourceSetup();
+  ASSERT_NEAR(s.imageDistance(), 0.75, 1e-12);
+  validate::ImageRunOptions o;
+  o.photons = 1'500'000;
+  o.seed = 12;
+  // Only a quarter of the photons pass the opening (they are aimed at the plate) and a wide opening's signed
+  // weights are large: 92 chunks rather than 23 keep each pixel's standard error (from the chunks' scatter)
+  // steady enough for the z-scores.
+  o.chunk_photons = 16384;
+  const validate::CaseResult r = validate::runImageLensPsf(s, o);
+  ASSERT_EQ(r.rows.size(), 62u);
+  const double peak = 0.9 / 3.14159265358979323846 * 1e-3 / (4 * 3.14159265358979323846 * 1.5 * 1.5) *
+                      std::pow(9e-6 / (550e-9 * 0.75), 2);
+  EXPECT_GT(r.rows[15].reference, 0.9 * peak);
+  EXPECT_LE(r.rows[15].reference, peak);
+  diffray::testing::expectRowsMatch(r);
+}
+
+TEST(StatRenderLens, DefocusedLensFailsTheImagePlanePattern) {
+  // The same with the lens's focal length 10 % longer: the comparison sees the blur, far beyond the noise.
+  const validate::LensPsfImageSetup s = pointSourceSetup();
+  render::LightScene defocused = validate::lensPsfImageScene(s);
+  defocused.occluders[0].focal_length_m *= 1.1;
+  render::RenderOptions ro;
+  ro.photons = 300'000;
+  ro.seed = 12;
+  ro.chunk_photons = 16384;
+  const validate::CaseResult d = validate::scoreImageLensPsf(s, render::renderLight(*render::prepareScene(defocused), ro));
+  double chi2 = 0.0;
+  for (const auto& row : d.rows) chi2 += std::pow((row.traced - row.reference) / row.std_error, 2);
+  const double n = static_cast<double>(d.rows.size());
+  std::printf("defocused: chi2/dof %.1f, max error %.3f of peak\n", chi2 / n, d.max_abs_error_rel_peak);
+  EXPECT_GT(chi2 / n, 10.0);
 }
 
 TEST(RenderLens, TableRangeLeavesTheDeflectionOut) {

@@ -25,8 +25,12 @@ double sincSquared(double z) {  // (sin πz / πz)²
 
 }  // namespace
 
+double LensPsfImageSetup::imageDistance() const {
+  return source_distance_m > 0.0 ? 1.0 / (1.0 / focal_length_m - 1.0 / source_distance_m) : focal_length_m;
+}
+
 double LensPsfImageSetup::fovDeg() const {
-  const double half_width_m = lobes * wavelength_m * focal_length_m / std::min(aperture_width_m, aperture_height_m);
+  const double half_width_m = lobes * wavelength_m * imageDistance() / std::min(aperture_width_m, aperture_height_m);
   return 2.0 * std::atan(half_width_m / camera_distance_m) * 180.0 / kPi;
 }
 
@@ -36,6 +40,7 @@ LensPsfImageSetup lensPsfImageSetup(const Params& p) {
   s.aperture_width_m = p.at("width")[0];
   s.aperture_height_m = p.at("height")[0];
   s.focal_length_m = p.at("focal")[0];
+  s.source_distance_m = p.at("source")[0];
   s.lobes = p.at("lobes")[0];
   s.width = s.height = static_cast<int>(p.at("pixels")[0]);
   if (s.width % 2 == 0) throw core::InputError("--pixels", "must be odd (a central row and column of pixels)");
@@ -43,19 +48,21 @@ LensPsfImageSetup lensPsfImageSetup(const Params& p) {
     throw core::InputError("--wavelength", "must lie in [380e-9, 780e-9] m (the visible range)");
   if (!(std::max(s.aperture_width_m, s.aperture_height_m) < 0.2 * s.focal_length_m))
     throw core::InputError("--focal", "must exceed 5 times the opening (the lens is paraxial)");
+  if (s.source_distance_m > 0.0 && !(s.source_distance_m > 1.05 * s.focal_length_m))
+    throw core::InputError("--source", "must be 0 (a collimated beam) or beyond 1.05 times --focal (a real image)");
   if (!(s.fovDeg() < 60.0)) throw core::InputError("--lobes", "too many for the camera's field (60 degrees)");
   return s;
 }
 
 render::LightScene lensPsfImageScene(const LensPsfImageSetup& s) {
   using core::Vec3;
-  const double f = s.focal_length_m, a = s.aperture_width_m, b = s.aperture_height_m;
+  const double f = s.focal_length_m, L = s.imageDistance(), a = s.aperture_width_m, b = s.aperture_height_m;
   const double view_half_m = std::tan(0.5 * s.fovDeg() * kPi / 180.0) * s.camera_distance_m;
   render::LightScene sc;
   sc.name = "image-lens-psf";
   render::DiffuseRect wall;
   wall.name = "wall";
-  wall.frame = render::rectFrame(Vec3(0, 0, f), Vec3(0, 0, -1), Vec3(0, 1, 0), "wall");
+  wall.frame = render::rectFrame(Vec3(0, 0, L), Vec3(0, 0, -1), Vec3(0, 1, 0), "wall");
   wall.half_x_m = wall.half_y_m = 2.0 * view_half_m;  // beyond the field: the table need not reach further
   wall.albedo.values = {s.albedo};
   sc.rects.push_back(wall);
@@ -67,18 +74,24 @@ render::LightScene lensPsfImageScene(const LensPsfImageSetup& s) {
   lens.aperture_width_m = a, lens.aperture_height_m = b;
   lens.focal_length_m = f;
   sc.occluders.push_back(lens);
-  render::Light laser;
-  laser.name = "laser";
-  laser.kind = render::Light::Kind::Collimated;
-  laser.spectrum.kind = render::Spectrum::Kind::Laser;
-  laser.spectrum.wavelength_nm = s.wavelength_m * 1e9;
-  laser.position_m = Vec3(0, 0, -0.05);
-  laser.frame = render::rectFrame(laser.position_m, Vec3(0, 0, 1), Vec3(0, 1, 0), "laser");
-  laser.half_x_m = 0.5 * a, laser.half_y_m = 0.5 * b;  // exactly the opening: every point of it evenly lit
-  laser.power_w = s.power_w;
-  sc.lights.push_back(laser);
-  sc.camera.position_m = Vec3(0, 0, f - s.camera_distance_m);
-  sc.camera.look_at_m = Vec3(0, 0, f);
+  render::Light light;
+  light.name = "light";
+  light.spectrum.kind = render::Spectrum::Kind::Laser;
+  light.spectrum.wavelength_nm = s.wavelength_m * 1e9;
+  light.power_w = s.power_w;
+  if (s.source_distance_m > 0.0) {
+    light.kind = render::Light::Kind::Point;
+    light.position_m = Vec3(0, 0, -s.source_distance_m);
+    light.aim = static_cast<int>(sc.rects.size());  // the lens: every photon drawn toward its plate
+  } else {
+    light.kind = render::Light::Kind::Collimated;
+    light.position_m = Vec3(0, 0, -0.05);
+    light.frame = render::rectFrame(light.position_m, Vec3(0, 0, 1), Vec3(0, 1, 0), "laser");
+    light.half_x_m = 0.5 * a, light.half_y_m = 0.5 * b;  // exactly the opening: every point of it evenly lit
+  }
+  sc.lights.push_back(light);
+  sc.camera.position_m = Vec3(0, 0, L - s.camera_distance_m);
+  sc.camera.look_at_m = Vec3(0, 0, L);
   sc.camera.up = Vec3(0, 1, 0);
   sc.camera.fov_x_deg = s.fovDeg();
   sc.camera.width = s.width, sc.camera.height = s.height;
@@ -93,13 +106,22 @@ CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o)
   ro.photons = o.photons ? o.photons : 80'000'000;
   ro.seed = o.seed;
   ro.uniform_shifts = o.uniform_shifts;
+  ro.chunk_photons = o.chunk_photons;
   ro.on_progress = o.on_progress;
   const auto t_render = std::chrono::steady_clock::now();
   const render::RenderResult img = render::renderLight(*ps, ro);
   const double seconds_render = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
+  CaseResult r = scoreImageLensPsf(s, img);
+  r.extra["seconds_render"] = seconds_render;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
 
-  const double a = s.aperture_width_m, b = s.aperture_height_m, lf = s.wavelength_m * s.focal_length_m;
-  const double peak = s.albedo / kPi * s.power_w / (a * b) * (a * b / lf) * (a * b / lf);  // ρ/π · I₀(ab/λf)²
+CaseResult scoreImageLensPsf(const LensPsfImageSetup& s, const render::RenderResult& img) {
+  const double a = s.aperture_width_m, b = s.aperture_height_m, lf = s.wavelength_m * s.imageDistance();
+  const double I0 = s.source_distance_m > 0.0 ? s.power_w / (4.0 * kPi * s.source_distance_m * s.source_distance_m)
+                                              : s.power_w / (a * b);
+  const double peak = s.albedo / kPi * I0 * (a * b / lf) * (a * b / lf);  // ρ/π · I₀(ab/λL)²
   auto radiance = [&](double x, double y) { return peak * sincSquared(a * x / lf) * sincSquared(b * y / lf); };
   const WallView view{s.camera_distance_m, s.fovDeg(), s.width, s.height};
   const int cx = s.width / 2, cy = s.height / 2;
@@ -120,25 +142,25 @@ CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o)
   for (int iy = 0; iy < s.height; ++iy) add(cx, iy, "column");
   r.negative_energy_fraction = img.negativePixelFraction();
   r.target_rel_peak = 0.01;
-  r.extra["seconds_render"] = seconds_render;
   r.extra["negative_score_fraction"] = img.negativeScoreFraction();
-  r.detail = "central row and column vs the focal-plane sinc² pattern averaged over each pixel, absolute radiance, "
+  r.detail = "central row and column vs the focal- (image-) plane sinc² pattern averaged over each pixel, absolute radiance, "
              "no fitted scale";
   scoreRows(r);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
 
 CaseInfo imageLensPsfCase() {
   CaseInfo c{"image-lens-psf",
-             "rendered thin-lens PSF (diffray render): the focal-plane image's central row and column vs sinc²",
+             "rendered thin-lens PSF (diffray render): the focal- or image-plane central row and column vs sinc²",
              {},
              80'000'000,
              {}};
   c.params = {{"wavelength", {550e-9}, "laser wavelength (m), visible"},
               {"width", {1e-3}, "lens opening along x, a (m)"},
               {"height", {1e-3}, "lens opening along y, b (m)"},
-              {"focal", {0.5}, "focal length f (m); the wall stands in the focal plane"},
+              {"focal", {0.5}, "focal length f (m); the wall stands in the focal plane (or the image plane)"},
+              {"source", {0.0}, "0: a laser beam filling the lens; > 1.05 f: a point light this far before it, the "
+                                "wall at 1/(1/f - 1/source)", 0.0, true},
               {"lobes", {4.0}, "first zeros λf/a the camera's field spans either side of the centre"},
               {"pixels", {121}, "image width and height in pixels (odd)", 2.0, true, 4097.0}};
   c.run = [](const Params& p, const RunOptions& o) {

@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "diffray/render/light_scene.h"
+#include "diffray/render/light_tracer.h"
 #include "diffray/validate/case.h"
 
 namespace diffray::validate {
@@ -49,6 +50,7 @@ struct ImageRunOptions {
   std::uint64_t photons = 0;
   std::uint64_t seed = 1;
   bool uniform_shifts = false;  ///< render::RenderOptions::uniform_shifts (the render-is bench)
+  std::uint64_t chunk_photons = render::RenderOptions{}.chunk_photons;  ///< more chunks: steadier std errors
   std::function<void(std::uint64_t)> on_progress;
 };
 
@@ -57,23 +59,31 @@ struct ImageRunOptions {
 /// Rows: one per column, x_m the column's centre on the wall. extra: rows_averaged, seconds_render.
 CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptions& o);
 
-/// The lens image (rooms/light/lens-psf.json, src/validate/image_lens_case.cpp): a laser beam exactly filling
-/// a thin lens's rectangular opening a × b (focal length f, at z = 0, transport::Occluder::focal_length_m), a
-/// diffuse wall in the focal plane z = f, the camera on the axis at camera_distance_m before the wall, its
-/// field spanning `lobes` first zeros λf/a either side. Oracle: the focal-plane (Fraunhofer) pattern of the
-/// opening, E(x, y) = I₀·(ab/λf)²·sinc²(ax/λf)·sinc²(by/λf), I₀ = P/(ab) (paraxial, as the lens is), times
-/// ρ/π, averaged over each pixel.
+/// The lens image (rooms/light/lens-psf.json, src/validate/image_lens_case.cpp): a thin lens with a rectangular
+/// opening a × b (focal length f, at z = 0, transport::Occluder::focal_length_m) lit either by a laser beam
+/// exactly filling the opening (source_distance_m = 0) or by a point light on the axis at s_o =
+/// source_distance_m > f before it, aimed at it; a diffuse wall where the lens images the source, z = L with
+/// L = f for the beam and L = s_i = 1/(1/f − 1/s_o) for the point (the thin-lens equation); the camera on
+/// the axis at camera_distance_m before the wall, its field spanning `lobes` first zeros λL/a either side.
+/// Oracle: the Fraunhofer pattern of the opening in that plane, E(x, y) = I₀·(ab/λL)²·sinc²(ax/λL)·
+/// sinc²(by/λL), I₀ the intensity on the opening (P/(ab) for the beam, P/(4π s_o²) for the point; paraxial,
+/// as the lens is), times ρ/π, averaged over each pixel.
 struct LensPsfImageSetup {
   double wavelength_m = 550e-9, aperture_width_m = 1e-3, aperture_height_m = 1e-3, focal_length_m = 0.5;
+  double source_distance_m = 0.0;  ///< 0: a collimated beam; > f: a point light this far before the lens
   double albedo = 0.9, power_w = 1e-3, camera_distance_m = 0.05, lobes = 4.0;
   int width = 121, height = 121;  ///< odd: a central row and column of pixels
+  double imageDistance() const;  ///< L: f, or s_i from 1/s_o + 1/s_i = 1/f
   double fovDeg() const;  ///< the field that spans `lobes` zeros of the wider lobe either side
 };
-/// From the case's parameters (wavelength, width, height, focal, lobes, pixels).
+/// From the case's parameters (wavelength, width, height, focal, source, lobes, pixels).
 LensPsfImageSetup lensPsfImageSetup(const Params& p);
 render::LightScene lensPsfImageScene(const LensPsfImageSetup& s);
 /// Renders and scores the central row (label "row", x_m its columns' wall x) then the central column (label
 /// "column", y_m) against the oracle, absolute radiance, no fitted scale. extra: seconds_render.
 CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o);
+/// The scoring alone, for an image rendered from lensPsfImageScene(s) (or a variant of it: a test's defocused
+/// lens): rows, errors against the oracle of `s`.
+CaseResult scoreImageLensPsf(const LensPsfImageSetup& s, const render::RenderResult& img);
 
 }  // namespace diffray::validate
