@@ -67,10 +67,13 @@ ShiftBounds shiftBounds(const LightScene& s, int k) {
 // A lens leaves a ray at α_o = α_i + λu' − x/f (transport::Occluder::focal_length_m): the table draws only
 // u', the diffraction around the geometric ray, so its range is the largest |α_o − α_i + x/f| (and along y)
 // that reaches an object, at each point of the opening (t = 0 elsewhere, so the plate's corners need no
-// shift) with that point's own deflection. Taking the plate's corners and leaving the deflection in instead
-// would both miss shifts (where −x/f and α_o − α_i have opposite signs) and cover the whole geometric
-// deflection of the lens, many times the diffraction lobe near the focus: a far wider table whose u-cells,
-// under the 8-million-cell cap, grow too coarse to resolve the focal spot.
+// shift) with that point's own deflection. The plain bound (plate corners, no deflection) would be wrong
+// both ways: it misses the shifts a ray needs where −x/f and α_o − α_i differ in sign (a strong lens, f well
+// below the distances to the objects: a focal spot partly outside the table), and it counts the geometric
+// spread of the whole plate, which the lens undoes (rays from every x meet at the focus), so it is wider
+// than needed (1.3× for rooms/light/lens-psf.json, test RenderLens; a plate many times its opening, or a
+// lens focusing a wide field onto a small wall, many times): more u-cells at the same du, and past the
+// 8-million-cell cap coarser ones that blur the focal spot.
 ShiftBounds lensShiftBounds(const LightScene& s, int k) {
   const OccluderSpec& occ = s.occluders[k];
   const geometry::Frame& f = occ.frame;
