@@ -1,10 +1,15 @@
 #pragma once
 // Shared oracle helpers of the render tests (tests/render_*_test.cpp). They use only the camera's spec (its
 // field of view and pixel counts), never render::Camera, so they share no code with the renderer.
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <vector>
 
 #include "diffray/core/math.h"
+#include "diffray/core/parallel.h"
 #include "diffray/render/camera.h"
+#include "diffray/render/light_tracer.h"
 
 namespace render_fixtures {
 
@@ -26,6 +31,19 @@ double pixelMean(const diffray::render::CameraSpec& c, const diffray::core::Vec3
       den += w;
     }
   return num / den;
+}
+
+/// Renders the scene with 1 and then 2 threads and expects bit-identical images (render/light_tracer.h:
+/// chunks with their own random streams).
+inline void expectSameImageForAnyThreadCount(const diffray::render::PreparedScene& ps,
+                                             const diffray::render::RenderOptions& o) {
+  std::vector<double> first;
+  for (int threads : {1, 2}) {
+    diffray::core::ThreadLimit limit(threads);
+    const diffray::render::RenderResult r = diffray::render::renderLight(ps, o);
+    if (first.empty()) first = r.xyz;
+    else EXPECT_EQ(first, r.xyz);
+  }
 }
 
 }  // namespace render_fixtures

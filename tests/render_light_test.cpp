@@ -191,13 +191,7 @@ TEST(RenderDeterminism, SameSeedSameImageForAnyThreadCount) {
   dr::RenderOptions o;
   o.photons = 40'000;
   o.chunk_photons = 1000;
-  std::vector<double> first;
-  for (int threads : {1, 2}) {
-    diffray::core::ThreadLimit limit(threads);
-    const dr::RenderResult r = dr::renderLight(*ps, o);
-    if (first.empty()) first = r.xyz;
-    else EXPECT_EQ(first, r.xyz);
-  }
+  render_fixtures::expectSameImageForAnyThreadCount(*ps, o);
 }
 
 }  // namespace
