@@ -192,6 +192,28 @@ TEST(RenderAreaLight, BadKeysAreOneLineErrorsNamingTheField) {
   EXPECT_EQ(error(ok + R"(, "two_sided": true, "aim": "wall")"), "no error");
 }
 
+TEST(RenderAreaLight, LampSceneFileHasTheContrastsItDocuments) {
+  // rooms/light/double-slit-lamp.json (and its README rows) state contrasts 0.99, 0.51, 0.00 for its three
+  // lamps, from top to bottom of the image: sinc(πds/(λD)) from the file's own numbers.
+  const dr::LightScene s = dr::loadLightScene(std::string(DIFFRAY_SOURCE_DIR) + "/rooms/light/double-slit-lamp.json");
+  ASSERT_EQ(s.lights.size(), 3u);
+  ASSERT_EQ(s.occluders.size(), 1u);
+  const dr::OccluderSpec& o = s.occluders[0];
+  const double contrast[] = {0.99, 0.51, 0.00};
+  for (int i = 0; i < 3; ++i) {
+    const dr::Light& l = s.lights[i];
+    EXPECT_EQ(l.kind, dr::Light::Kind::Area);
+    EXPECT_EQ(l.aim, static_cast<int>(s.rects.size()));  // the slits
+    const double D = o.frame.origin.z() - l.position_m.z(), lambda = l.spectrum.wavelength_nm * 1e-9;
+    const double arg = kPi * o.spacing_m * (2.0 * l.half_x_m) / (lambda * D);
+    EXPECT_NEAR(std::sin(arg) / arg, contrast[i], 0.005) << l.name;
+    // Its band Y = y(1 + L/D) − y_s·L/D: the first lamp (lowest) lights the top of the wall.
+    if (i > 0) {
+      EXPECT_GT(l.position_m.y(), s.lights[i - 1].position_m.y());
+    }
+  }
+}
+
 TEST(RenderAreaLightDeterminism, SameSeedSameImageForAnyThreadCount) {
   const Opposed g;
   for (bool aim : {false, true}) {
