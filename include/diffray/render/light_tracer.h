@@ -7,7 +7,7 @@
 // isotropically (or toward its `aim` rectangle, sampled by area: weight A·cosθ_y/(4π r²)); a laser from a
 // uniform point of its beam's cross-section; an area light (Lambertian, radiance L = P/(πA) on its emitting
 // face) from a uniform point x of its rectangle (pdf 1/A) in a cosine-distributed direction about that face
-// (pdf cosθ_x/π), so the photon keeps the light's share P: L·cosθ_x·dA·dω / (pdf_A·pdf_ω) = P. With `aim`, the
+// (pdf cosθ_x/π): L·cosθ_x·dA·dω/(pdf_A·pdf_ω) = P, so the photon's energy is unchanged. With `aim`, the
 // direction goes to a point y drawn uniformly on the target rectangle (area A_t): the solid-angle pdf is
 // r²/(A_t|cosθ_y|), so the weight is L·cosθ_x·A·A_t|cosθ_y|/r² = P·max(cosθ_x, 0)·A_t|cosθ_y|/(π r²); two-sided
 // (P/2 from each face, L = P/(2πA)): (P/2)·|cosθ_x|·A_t|cosθ_y|/(π r²), and without `aim` a face drawn with
