@@ -379,6 +379,15 @@ expect_error "render: zero exposure"      render "$tmp/light.json" -o "$png" --p
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{"type": "grating", "centre": [0,0,0.2], "normal": [0,0,1], "width_m": 0.1, "height_m": 0.1, "period_m": 1.6e-6, "modulation": 3, "reflectance": 1.5}]}\n' "$light" >"$tmp/refl.json"
 expect_error "render: reflectance > 1"    render "$tmp/refl.json" -o "$png"
 expect_error "validate image-cd: 900 nm"  validate image-cd --wavelength 900e-9 --rays 1000 "$csv"
+area='"type": "area", "centre": [0,0,0.5], "normal": [0,0,-1]'
+printf '{%s, "lights": [{%s, "width_m": 0, "height_m": 0.1}]}\n' "$light" "$area" >"$tmp/area0.json"
+printf '{%s, "lights": [{%s, "up": [0,0,3], "width_m": 0.1, "height_m": 0.1}]}\n' "$light" "$area" >"$tmp/areaup.json"
+printf '{%s, "lights": [{%s, "width_m": 0.1, "height_m": 0.1, "colour": 1}]}\n' "$light" "$area" >"$tmp/areakey.json"
+printf '{%s, "lights": [{%s, "width_m": 0.1, "height_m": 0.1, "two_sided": "yes"}]}\n' "$light" "$area" >"$tmp/area2.json"
+expect_clean "render: area zero width"    "out.csv*" "lights[0].width_m" render "$tmp/area0.json" -o "$png"
+expect_clean "render: area up = normal"   "out.csv*" "lights[0].up" render "$tmp/areaup.json" -o "$png"
+expect_clean "render: area unknown key"   "out.csv*" "colour" render "$tmp/areakey.json" -o "$png"
+expect_clean "render: area two_sided"     "out.csv*" "lights[0].two_sided" render "$tmp/area2.json" -o "$png"
 lens='"type": "lens", "centre": [0,0,0.2], "normal": [0,0,1], "width_m": 0.01, "height_m": 0.01'
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "aperture_height_m": 1e-3, "focal_length_m": 0}]}\n' "$light" "$lens" >"$tmp/f0.json"
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{%s, "aperture_width_m": 1e-3, "aperture_height_m": 1e-3, "focal_length_m": -0.5}]}\n' "$light" "$lens" >"$tmp/fneg.json"

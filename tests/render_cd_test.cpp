@@ -29,6 +29,14 @@ TEST(RenderImageCd, FirstOrderLandsWhereTheGratingEquationSays) {
   EXPECT_GE(r.extra.at("lobe_columns"), 2.0);  // the lobe is resolved, so the centroid is sub-pixel
   EXPECT_LE(r.max_abs_error_rel_peak, 1.0) << r.detail;
   EXPECT_TRUE(r.passed) << r.detail;
+  // The check discriminates: a tracer sending 540 or 560 nm where 550 nm should go (a 10 nm error: the
+  // order moves by ~1.6 mm, 2.5 footprints) would fail it. The rendered lobe lies more than two footprints
+  // from both of those predictions (computed here, not by the case).
+  const double footprint = r.extra.at("pixel_footprint_m"), z = r.extra.at("z_measured_m");
+  for (const double wrong_nm : {540.0, 560.0}) {
+    const double z_wrong = 0.2 * std::tan(std::asin(wrong_nm / 1600.0));
+    EXPECT_GT(std::abs(z - z_wrong), 2.0 * footprint) << wrong_nm << " nm";
+  }
 }
 
 // Oblique incidence and another wavelength: sinθ_1 = sin 10° + 450 nm / 1.6 µm.

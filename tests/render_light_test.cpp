@@ -16,6 +16,7 @@
 #include "diffray/render/light_scene.h"
 #include "diffray/render/light_setup.h"
 #include "diffray/render/light_tracer.h"
+#include "render_fixtures.h"
 
 namespace {
 
@@ -23,23 +24,7 @@ namespace dr = diffray::render;
 using diffray::core::Vec3;
 constexpr double kPi = 3.14159265358979323846;
 
-// Mean over pixel (ix, iy) of f(direction), weighted by solid angle, for a camera at the origin-independent
-// basis (right, up, forward) with half-width tangent T: Gauss–Legendre n × n in image-plane coordinates.
-template <class F>
-double pixelMean(const dr::CameraSpec& c, const Vec3& right, const Vec3& up, const Vec3& fwd, int ix, int iy, F f,
-                 int n = 6) {
-  const auto& gl = diffray::core::gaussLegendre(n);
-  const double T = std::tan(0.5 * c.fov_x_deg * kPi / 180.0), s = 2.0 * T / c.width, Ty = 0.5 * s * c.height;
-  double num = 0.0, den = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double X = -T + (ix + 0.5 + 0.5 * gl.nodes[i]) * s, Y = Ty - (iy + 0.5 + 0.5 * gl.nodes[j]) * s;
-      const double w = gl.weights[i] * gl.weights[j] * std::pow(1 + X * X + Y * Y, -1.5);
-      num += w * f((fwd + X * right + Y * up).normalized());
-      den += w;
-    }
-  return num / den;
-}
+using render_fixtures::pixelMean;
 
 struct Comparison {
   double chi2_per_dof = 0, max_abs_z = 0, mean_ratio = 0, mean_ratio_sigma = 0, max_err_over_peak = 0;
@@ -206,13 +191,7 @@ TEST(RenderDeterminism, SameSeedSameImageForAnyThreadCount) {
   dr::RenderOptions o;
   o.photons = 40'000;
   o.chunk_photons = 1000;
-  std::vector<double> first;
-  for (int threads : {1, 2}) {
-    diffray::core::ThreadLimit limit(threads);
-    const dr::RenderResult r = dr::renderLight(*ps, o);
-    if (first.empty()) first = r.xyz;
-    else EXPECT_EQ(first, r.xyz);
-  }
+  render_fixtures::expectSameImageForAnyThreadCount(*ps, o);
 }
 
 }  // namespace

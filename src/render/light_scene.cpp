@@ -167,6 +167,19 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
   return o;
 }
 
+// The index of the rectangle or occluder named by `aim` (an area light's; a point light's is read inline).
+int parseAim(const JsonField& f, const std::vector<std::string>& target_names) {
+  const std::string t = f["aim"].string();
+  const auto it = std::find(target_names.begin(), target_names.end(), t);
+  if (it == target_names.end()) f["aim"].fail("no rectangle or occluder is named \"" + t + "\"");
+  return static_cast<int>(it - target_names.begin());
+}
+
+bool parseBool(const JsonField& f) {
+  if (!f.json().is_boolean()) f.fail("must be true or false, got " + room::describeJson(f.json()));
+  return f.json().get<bool>();
+}
+
 Light parseLight(const JsonField& f, int index, const std::vector<std::string>& target_names) {
   Light l;
   const std::string type = f["type"].string();
@@ -190,8 +203,17 @@ Light parseLight(const JsonField& f, int index, const std::vector<std::string>& 
     l.frame = rectFrame(l.position_m, f["direction"].vec3(), optionalVec(f, "up", Vec3(0, 1, 0)), f.where());
     l.half_x_m = 0.5 * f["width_m"].positive();
     l.half_y_m = f.has("height_m") ? 0.5 * f["height_m"].positive() : l.half_x_m;
+  } else if (type == "area") {
+    f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "power_w", "spectrum",
+                 "wavelength_nm", "two_sided", "aim"});
+    l.kind = Light::Kind::Area;
+    l.spectrum = parseSpectrum(f, Spectrum::Kind::White);
+    parseRect(f, l.frame, l.half_x_m, l.half_y_m);
+    l.position_m = l.frame.origin;
+    if (f.has("two_sided")) l.two_sided = parseBool(f["two_sided"]);
+    if (f.has("aim")) l.aim = parseAim(f, target_names);
   } else {
-    f["type"].fail("unknown light type \"" + type + "\" (types: point, laser)");
+    f["type"].fail("unknown light type \"" + type + "\" (types: point, laser, area)");
   }
   l.name = f.has("name") ? f["name"].string() : type + std::to_string(index + 1);
   l.power_w = f.has("power_w") ? f["power_w"].positive() : 1.0;

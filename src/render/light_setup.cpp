@@ -42,6 +42,10 @@ ShiftBounds shiftBounds(const LightScene& s, int k, const std::vector<Vec3>& her
       if (l.kind == Light::Kind::Point) {
         if ((h - l.position_m).norm() > 0) in_dirs.push_back((h - l.position_m).normalized());
       }
+    for (const Light& l : s.lights)  // an area light: its centre and corners, as point lights
+      if (l.kind == Light::Kind::Area)
+        for (const Vec3& p : rectPoints(l.frame, l.half_x_m, l.half_y_m))
+          if ((h - p).norm() > 0) in_dirs.push_back((h - p).normalized());
     for (const Vec3& p : others)
       if ((p - h).norm() > 0) {
         in_dirs.push_back((h - p).normalized());

@@ -73,21 +73,15 @@ class PathTracer {
       ph.energy *= 1.0 / ((kVisibleHiNm - kVisibleLoNm) * w.pdf_per_nm);
     }
     if (l.kind == Light::Kind::Collimated) {
-      const double sx = (2.0 * rng_.uniform() - 1.0) * l.half_x_m, sy = (2.0 * rng_.uniform() - 1.0) * l.half_y_m;
-      ph.o = l.position_m + sx * l.frame.ex + sy * l.frame.ey;
+      ph.o = uniformPoint(l.position_m, l.frame, l.half_x_m, l.half_y_m);
       ph.d = l.frame.n;
+    } else if (l.kind == Light::Kind::Area) {
+      if (!startArea(l, ph)) return;
     } else if (l.aim >= 0) {
       // Toward a point y drawn uniformly on the target rectangle: the solid-angle pdf is r²/(A cosθ_y), so
       // the isotropic light's share P/(4π)·dω becomes the weight A·cosθ_y/(4π r²).
-      const LightScene::Target t = s_.target(l.aim);
-      const double sx = (2.0 * rng_.uniform() - 1.0) * t.half_x_m, sy = (2.0 * rng_.uniform() - 1.0) * t.half_y_m;
-      const Vec3 y = t.frame->origin + sx * t.frame->ex + sy * t.frame->ey;
-      const Vec3 to = y - l.position_m;
-      const double r2 = to.squaredNorm();
       ph.o = l.position_m;
-      ph.d = to / std::sqrt(r2);
-      const double area = 4.0 * t.half_x_m * t.half_y_m;
-      ph.energy *= area * std::abs(ph.d.dot(t.frame->n)) / (4.0 * core::kPi * r2);
+      ph.energy *= aimAt(l.aim, ph) / (4.0 * core::kPi);
     } else {
       const double z = 2.0 * rng_.uniform() - 1.0, phi = core::kTwoPi * rng_.uniform();
       const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
@@ -98,6 +92,41 @@ class PathTracer {
   }
 
  private:
+  // A point drawn uniformly on the rectangle centred on c with the axes of frame f, half-extents hx × hy.
+  Vec3 uniformPoint(const Vec3& c, const geometry::Frame& f, double hx, double hy) {
+    const double sx = (2.0 * rng_.uniform() - 1.0) * hx, sy = (2.0 * rng_.uniform() - 1.0) * hy;
+    return c + sx * f.ex + sy * f.ey;
+  }
+
+  // Points ph.d from ph.o to a point y drawn uniformly on target rectangle `target` and returns the
+  // geometric factor A·|cosθ_y|/r² (the solid angle per unit pdf: dω = A|cosθ_y|/r² × the area pdf 1/A).
+  double aimAt(int target, Photon& ph) {
+    const LightScene::Target t = s_.target(target);
+    const Vec3 to = uniformPoint(t.frame->origin, *t.frame, t.half_x_m, t.half_y_m) - ph.o;
+    const double r2 = to.squaredNorm();
+    if (!(r2 > 0)) return 0.0;
+    ph.d = to / std::sqrt(r2);
+    return 4.0 * t.half_x_m * t.half_y_m * std::abs(ph.d.dot(t.frame->n)) / r2;
+  }
+
+  // An area light's start (light_tracer.h): a uniform point x, then a cosine-distributed direction about
+  // the emitting face, or toward `aim` with the weight P·cosθ_x·A_t|cosθ_y|/(π r²) (ph.energy carries P).
+  // Returns false when the photon carries nothing (aimed behind a one-sided light).
+  bool startArea(const Light& l, Photon& ph) {
+    ph.o = uniformPoint(l.position_m, l.frame, l.half_x_m, l.half_y_m);
+    if (l.aim >= 0) {
+      const double g = aimAt(l.aim, ph), cos_x = ph.d.dot(l.frame.n);
+      const double emit = l.two_sided ? 0.5 * std::abs(cos_x) : std::max(cos_x, 0.0);
+      ph.energy *= emit * g / core::kPi;
+      return ph.energy != 0.0;
+    }
+    // Two-sided: each face emits P/2, so a face drawn with probability 1/2 keeps the photon's energy.
+    const bool back = l.two_sided && rng_.uniform() < 0.5;
+    const double u1 = rng_.uniform(), u2 = rng_.uniform();
+    ph.d = cosineDirection(back ? Vec3(-l.frame.n) : l.frame.n, u1, u2);
+    return true;
+  }
+
   void trace(Photon& ph) {
     const geometry::Intersector& isect = ps_.scene.intersector();
     for (int bounce = 0;; ++bounce) {

@@ -72,8 +72,13 @@ struct OccluderSpec {
 /// that rectangle is all the light can reach that matters, e.g. the opening of an occluder).
 /// Collimated: a beam of direction `direction` through the rectangle frame (normal = direction) of
 /// half-extents half_x_m × half_y_m around position_m, power_w spread evenly over it (a laser).
+/// Area: a Lambertian rectangle (a frosted lamp) centred on position_m, frame.n the normal of the face that
+/// emits, half-extents half_x_m × half_y_m; power_w leaves that face with the uniform radiance
+/// L = P/(πA) (two_sided: both faces, P/2 each, L = P/(2πA)). With `aim` ≥ 0 its photons are drawn only toward
+/// that rectangle, as for a point light. A light is not an object: it blocks nothing and the camera does not
+/// see it.
 struct Light {
-  enum class Kind { Point, Collimated };
+  enum class Kind { Point, Collimated, Area };
   std::string name;
   Kind kind = Kind::Point;
   Spectrum spectrum;
@@ -82,6 +87,7 @@ struct Light {
   geometry::Frame frame;  ///< Collimated: the beam's cross-section (n = direction)
   double half_x_m = 0.0, half_y_m = 0.0;
   int aim = -1;
+  bool two_sided = false;  ///< Area: both faces emit
 };
 
 struct RenderSettings {

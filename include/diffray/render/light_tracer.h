@@ -5,7 +5,13 @@
 // Paths. A photon picks a light with probability ∝ power, a wavelength (laser: its line; white: λ from
 // color::sampleWavelength, weight S(λ)/p(λ) with S = 1/400 nm⁻¹), and a start: a point light emits
 // isotropically (or toward its `aim` rectangle, sampled by area: weight A·cosθ_y/(4π r²)); a laser from a
-// uniform point of its beam's cross-section. At an occluder it scatters with the importance-sampled WBSDF
+// uniform point of its beam's cross-section; an area light (Lambertian, radiance L = P/(πA) on its emitting
+// face) from a uniform point x of its rectangle (pdf 1/A) in a cosine-distributed direction about that face
+// (pdf cosθ_x/π): L·cosθ_x·dA·dω/(pdf_A·pdf_ω) = P, so the photon's energy is unchanged. With `aim`, the
+// direction goes to a point y drawn uniformly on the target rectangle (area A_t): the solid-angle pdf is
+// r²/(A_t|cosθ_y|), so the weight is L·cosθ_x·A·A_t|cosθ_y|/r² = P·max(cosθ_x, 0)·A_t|cosθ_y|/(π r²); two-sided
+// (P/2 from each face, L = P/(2πA)): (P/2)·|cosθ_x|·A_t|cosθ_y|/(π r²), and without `aim` a face drawn with
+// probability 1/2. At an occluder it scatters with the importance-sampled WBSDF
 // (transport::scatterAtOccluder, paper eq. 8–10): the signed weight sign(W)·Σ|W| multiplies its energy.
 // At a diffuse rectangle it is scored (below), then continues (up to diffuse_bounces times) with
 // probability ρ(λ) in a cosine-distributed direction, or ends.
