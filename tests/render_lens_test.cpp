@@ -176,9 +176,8 @@ TEST(StatRenderLens, PointSourceImagesWhereTheThinLensEquationSays) {
   validate::ImageRunOptions o;
   o.photons = 1'500'000;
   o.seed = 12;
-  // Only a quarter of the photons pass the opening (they are aimed at the plate) and a wide opening's signed
-  // weights are large: 92 chunks rather than 23 keep each pixel's standard error (from the chunks' scatter)
-  // steady enough for the z-scores.
+  // A wide opening's signed weights are large: 92 chunks rather than 23 keep each pixel's standard error
+  // (from the chunks' scatter) steady enough for the z-scores.
   o.chunk_photons = 16384;
   const validate::CaseResult r = validate::runImageLensPsf(s, o);
   ASSERT_EQ(r.rows.size(), 62u);

@@ -70,7 +70,9 @@ render::LightScene lensPsfImageScene(const LensPsfImageSetup& s) {
   lens.name = "lens";
   lens.kind = render::OccluderSpec::Kind::Lens;
   lens.frame = render::rectFrame(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), "lens");
-  lens.half_x_m = a, lens.half_y_m = b;
+  // A point light is aimed at the plate, so the plate is the opening there: every photon drawn passes.
+  const double plate = s.source_distance_m > 0.0 ? 0.5 : 1.0;
+  lens.half_x_m = plate * a, lens.half_y_m = plate * b;
   lens.aperture_width_m = a, lens.aperture_height_m = b;
   lens.focal_length_m = f;
   sc.occluders.push_back(lens);
