@@ -88,18 +88,34 @@ render::LightScene doubleSlitImageScene(const DoubleSlitImageSetup& s) {
   return sc;
 }
 
-CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const render::LightScene sc = doubleSlitImageScene(s);
-  const auto ps = render::prepareScene(sc);
+ImageRunOptions imageRunOptions(const RunOptions& o, const std::string& case_name) {
+  if (o.model != "wigner") throw core::InputError("--model", case_name + " takes the wigner model only");
+  ImageRunOptions io;
+  io.photons = o.rays;
+  io.seed = o.seed;
+  io.on_progress = o.on_progress;
+  return io;
+}
+
+render::RenderResult renderImageScene(const render::LightScene& scene, const ImageRunOptions& o,
+                                      std::uint64_t default_photons, double& seconds_render) {
+  const auto ps = render::prepareScene(scene);
   render::RenderOptions ro;
-  ro.photons = o.photons ? o.photons : 80'000'000;
+  ro.photons = o.photons ? o.photons : default_photons;
   ro.seed = o.seed;
   ro.uniform_shifts = o.uniform_shifts;
+  ro.chunk_photons = o.chunk_photons;
   ro.on_progress = o.on_progress;
-  const auto t_render = std::chrono::steady_clock::now();
-  const render::RenderResult img = render::renderLight(*ps, ro);
-  const double seconds_render = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
+  const auto t0 = std::chrono::steady_clock::now();
+  render::RenderResult img = render::renderLight(*ps, ro);
+  seconds_render = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return img;
+}
+
+CaseResult runImageDoubleSlit(const DoubleSlitImageSetup& s, const ImageRunOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  double seconds_render = 0.0;
+  const render::RenderResult img = renderImageScene(doubleSlitImageScene(s), o, 80'000'000, seconds_render);
 
   // The oracle's camera (WallView): D = 0.4·L the camera-to-wall distance.
   const double L = s.distance_m, D = 0.4 * L, lambda = s.wavelength_m;
@@ -157,12 +173,7 @@ CaseInfo imageDoubleSlitCase() {
               {"spacing", {250e-6}, "slit spacing d, centre to centre (m)"},
               {"distance", {2.0}, "slits to wall (m); the camera stands at 0.6 of it"}};
   c.run = [](const Params& p, const RunOptions& o) {
-    if (o.model != "wigner") throw core::InputError("--model", "image-double-slit takes the wigner model only");
-    ImageRunOptions io;
-    io.photons = o.rays;
-    io.seed = o.seed;
-    io.on_progress = o.on_progress;
-    return runImageDoubleSlit(doubleSlitImageSetup(p), io);
+    return runImageDoubleSlit(doubleSlitImageSetup(p), imageRunOptions(o, "image-double-slit"));
   };
   return c;
 }

@@ -102,17 +102,8 @@ render::LightScene lensPsfImageScene(const LensPsfImageSetup& s) {
 
 CaseResult runImageLensPsf(const LensPsfImageSetup& s, const ImageRunOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  const render::LightScene sc = lensPsfImageScene(s);
-  const auto ps = render::prepareScene(sc);
-  render::RenderOptions ro;
-  ro.photons = o.photons ? o.photons : 80'000'000;
-  ro.seed = o.seed;
-  ro.uniform_shifts = o.uniform_shifts;
-  ro.chunk_photons = o.chunk_photons;
-  ro.on_progress = o.on_progress;
-  const auto t_render = std::chrono::steady_clock::now();
-  const render::RenderResult img = render::renderLight(*ps, ro);
-  const double seconds_render = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_render).count();
+  double seconds_render = 0.0;
+  const render::RenderResult img = renderImageScene(lensPsfImageScene(s), o, 80'000'000, seconds_render);
   CaseResult r = scoreImageLensPsf(s, img);
   r.extra["seconds_render"] = seconds_render;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -166,12 +157,7 @@ CaseInfo imageLensPsfCase() {
               {"lobes", {4.0}, "first zeros λf/a the camera's field spans either side of the centre"},
               {"pixels", {121}, "image width and height in pixels (odd)", 2.0, true, 4097.0}};
   c.run = [](const Params& p, const RunOptions& o) {
-    if (o.model != "wigner") throw core::InputError("--model", "image-lens-psf takes the wigner model only");
-    ImageRunOptions io;
-    io.photons = o.rays;
-    io.seed = o.seed;
-    io.on_progress = o.on_progress;
-    return runImageLensPsf(lensPsfImageSetup(p), io);
+    return runImageLensPsf(lensPsfImageSetup(p), imageRunOptions(o, "image-lens-psf"));
   };
   return c;
 }

@@ -8,6 +8,7 @@
 // not taken from the renderer's Camera. Units: metres, watts. Pure functions; thread-safe.
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "diffray/render/light_scene.h"
 #include "diffray/render/light_tracer.h"
@@ -53,6 +54,15 @@ struct ImageRunOptions {
   std::uint64_t chunk_photons = render::RenderOptions{}.chunk_photons;  ///< more chunks: steadier std errors
   std::function<void(std::uint64_t)> on_progress;
 };
+
+/// A validate case's run options as image options (photons = --rays, 0 for the case's default; seed;
+/// progress), after checking that the case was asked for the wigner model (image cases have no other).
+ImageRunOptions imageRunOptions(const RunOptions& o, const std::string& case_name);
+
+/// Renders `scene` with the options (o.photons, or `default_photons` when it is 0); `seconds_render` gets the
+/// render's own wall time (preparing the tables excluded).
+render::RenderResult renderImageScene(const render::LightScene& scene, const ImageRunOptions& o,
+                                      std::uint64_t default_photons, double& seconds_render);
 
 /// Renders the scene and scores each column of the band of rows lying wholly inside the beam (averaged
 /// over those rows: the pattern does not depend on y there) against the pixel-averaged oracle.
