@@ -376,6 +376,9 @@ expect_error "render: photons and spp"    render "$tmp/light.json" -o "$png" --p
 expect_error "render: not a PNG"          render "$tmp/light.json" -o "$tmp/out.csv"
 expect_error "render: missing folder"     render "$tmp/light.json" -o "$tmp/no/such/dir/out.png"
 expect_error "render: zero exposure"      render "$tmp/light.json" -o "$png" --photons 100 --exposure 0
+expect_error "render: float format"      render "$tmp/light.json" -o "$png" --photons 100 --float tiff
+expect_error "render: CSV folder"         render "$tmp/light.json" -o "$png" --photons 100 --csv "$tmp/no/such/dir/p.csv"
+expect_error "render: CSV extension"      render "$tmp/light.json" -o "$png" --photons 100 --csv "$tmp/out.csv.txt"
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "occluders": [{"type": "grating", "centre": [0,0,0.2], "normal": [0,0,1], "width_m": 0.1, "height_m": 0.1, "period_m": 1.6e-6, "modulation": 3, "reflectance": 1.5}]}\n' "$light" >"$tmp/refl.json"
 expect_error "render: reflectance > 1"    render "$tmp/refl.json" -o "$png"
 expect_error "validate image-cd: 900 nm"  validate image-cd --wavelength 900e-9 --rays 1000 "$csv"

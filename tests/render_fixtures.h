@@ -9,6 +9,7 @@
 #include "diffray/core/math.h"
 #include "diffray/core/parallel.h"
 #include "diffray/render/camera.h"
+#include "diffray/render/light_scene.h"
 #include "diffray/render/light_tracer.h"
 
 namespace render_fixtures {
@@ -44,6 +45,24 @@ inline void expectSameImageForAnyThreadCount(const diffray::render::PreparedScen
     if (first.empty()) first = r.xyz;
     else EXPECT_EQ(first, r.xyz);
   }
+}
+
+/// A 1 m white wall (albedo 0.8) at z = 0 facing +z under a 1 W white point light at (0.1, 0, 1), seen
+/// from (0, 0, 2) in width × height pixels over a 40° field: the wall fills the view.
+inline diffray::render::LightScene wallUnderPointLight(int width, int height) {
+  using diffray::core::Vec3;
+  diffray::render::LightScene s;
+  diffray::render::DiffuseRect wall;
+  wall.frame = diffray::render::rectFrame(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), "wall");
+  s.rects.push_back(wall);
+  diffray::render::Light light;
+  light.position_m = Vec3(0.1, 0, 1);
+  s.lights.push_back(light);
+  s.camera.position_m = Vec3(0, 0, 2);
+  s.camera.look_at_m = Vec3(0, 0, 0);
+  s.camera.width = width;
+  s.camera.height = height;
+  return s;
 }
 
 }  // namespace render_fixtures

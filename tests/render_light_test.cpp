@@ -176,17 +176,7 @@ TEST(StatRenderDoubleSlit, CentralRowMatchesFraunhofer) {
 }
 
 TEST(RenderDeterminism, SameSeedSameImageForAnyThreadCount) {
-  dr::LightScene s;
-  dr::DiffuseRect wall;
-  wall.frame = dr::rectFrame(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), "wall");
-  s.rects.push_back(wall);
-  dr::Light light;
-  light.position_m = Vec3(0.1, 0, 1);
-  s.lights.push_back(light);
-  s.camera.position_m = Vec3(0, 0, 2);
-  s.camera.look_at_m = Vec3(0, 0, 0);
-  s.camera.width = 8;
-  s.camera.height = 8;
+  const dr::LightScene s = render_fixtures::wallUnderPointLight(8, 8);
   const auto ps = dr::prepareScene(s);
   dr::RenderOptions o;
   o.photons = 40'000;

@@ -1,7 +1,9 @@
-// `diffray render SCENE.json -o OUT.png [--photons N | --spp N] [--seed S] [--threads T] [--exposure E]`:
-// light-traces a light scene (rooms/light/README.md, render/light_tracer.h) and writes OUT.png (sRGB, 8 bit),
-// OUT.pfm (linear sRGB floats, radiance units) and OUT.json (photons, seed, seconds, negative-energy
-// fractions, energy balance). Every output is written atomically; bad input is one line and exit 2.
+// `diffray render SCENE.json -o OUT.png [--photons N | --spp N] [--seed S] [--threads T] [--exposure E]
+// [--float pfm|exr] [--csv FILE]`: light-traces a light scene (rooms/light/README.md, render/light_tracer.h)
+// and writes OUT.png (sRGB, 8 bit), OUT.pfm or OUT.exr (linear sRGB floats, radiance units), OUT.json
+// (photons, seed, seconds, negative-energy fractions, energy balance, the files written) and, with --csv,
+// every pixel's radiance, standard error, XYZ and linear sRGB. Every output is written atomically, and all
+// are checked before the render starts; bad input is one line and exit 2.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +15,7 @@
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
+#include "diffray/image/exr.h"
 #include "diffray/image/pfm.h"
 #include "diffray/image/png.h"
 #include "diffray/render/film.h"
@@ -25,17 +28,18 @@ namespace diffray::cli {
 namespace {
 
 struct RenderCliOptions {
-  std::string scene, out;
+  std::string scene, out, float_format = "pfm", csv;
   double photons = 0, spp = 0, exposure = 0;
   bool seed_given = false;
 };
 
-void checkOutput(const std::string& out, const std::string& in) {
+void checkOutput(const RenderCliOptions& o) {
   namespace fs = std::filesystem;
-  checkOutputFile(out, ".png");
+  checkOutputFile(o.out, ".png");
+  if (!o.csv.empty()) checkOutputFile(o.csv, ".csv");
   std::error_code ec;
-  if (fs::equivalent(out, in, ec) || fs::equivalent(withExtension(out, ".json"), in, ec))
-    throw core::InputError(out, "would overwrite the scene file");
+  for (const std::string& f : {o.out, withExtension(o.out, ".json"), withExtension(o.out, "." + o.float_format), o.csv})
+    if (!f.empty() && fs::equivalent(f, o.scene, ec)) throw core::InputError(f, "would overwrite the scene file");
 }
 
 }  // namespace
@@ -44,16 +48,19 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
   auto o = std::make_shared<RenderCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "render", "Render a light scene (rooms/light/README.md) by spectral light tracing with WBSDF occluders: "
-                "writes OUT.png, OUT.pfm (linear floats) and OUT.json.");
+                "writes OUT.png, OUT.pfm or OUT.exr (linear floats) and OUT.json.");
   sub->add_option("scene", o->scene, "light scene file (JSON)")->required();
-  sub->add_option("-o,--output", o->out, "output PNG (the .pfm and .json go beside it)")->required();
+  sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")->required();
   auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
   sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
   sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)");
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
   sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");
+  sub->add_option("--float", o->float_format, "linear float image beside the PNG: pfm (default) or exr (OpenEXR)")
+      ->check(CLI::IsMember({"pfm", "exr"}));
+  sub->add_option("--csv", o->csv, "also write every pixel (radiance, standard error, XYZ, linear sRGB) to this CSV");
   return [o, sub, &common]() {
-    checkOutput(o->out, o->scene);
+    checkOutput(*o);
     const render::LightScene scene = render::loadLightScene(o->scene);
     std::uint64_t photons = scene.settings.photons;
     if (sub->count("--photons")) photons = wholeCount("--photons", o->photons);
@@ -79,7 +86,12 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                                                           : render::autoExposure(r);
     const image::Image img = render::linearSrgb(r);
     image::writePng(o->out, img, exposure);
-    image::writePfm(withExtension(o->out, ".pfm"), img);
+    const std::string float_file = withExtension(o->out, "." + o->float_format);
+    if (o->float_format == "exr") image::writeExr(float_file, img);
+    else image::writePfm(float_file, img);
+    if (!o->csv.empty()) core::writeFileAtomically(o->csv, [&](std::ostream& out) { render::writePixelCsv(out, r); });
+    nlohmann::json files{{"png", o->out}, {o->float_format, float_file}};
+    if (!o->csv.empty()) files["csv"] = o->csv;
     const double p = r.emitted;
     nlohmann::json side{{"scene", o->scene},
                         {"name", scene.name},
@@ -93,6 +105,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                         {"negative_pixel_fraction", r.negativePixelFraction()},
                         {"negative_score_fraction", r.negativeScoreFraction()},
                         {"camera_scores", r.camera_scores},
+                        {"files", files},
                         {"energy",
                          {{"emitted_w", p},
                           {"on_diffuse", r.on_diffuse / p},

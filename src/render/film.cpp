@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <vector>
+#include <ostream>
 
 #include "diffray/color/srgb.h"
 
@@ -31,6 +32,21 @@ double autoExposure(const RenderResult& r) {
   const std::size_t k = std::min(peak.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(peak.size())));
   std::nth_element(peak.begin(), peak.begin() + static_cast<std::ptrdiff_t>(k), peak.end());
   return 1.0 / peak[k];
+}
+
+void writePixelCsv(std::ostream& out, const RenderResult& r) {
+  const image::Image img = linearSrgb(r);
+  const auto old_precision = out.precision(9);
+  out << "ix,iy,radiance_w_m2_sr,std_error_w_m2_sr,X,Y,Z,r,g,b\n";
+  for (int iy = 0; iy < r.height; ++iy)
+    for (int ix = 0; ix < r.width; ++ix) {
+      const std::size_t i = static_cast<std::size_t>(iy) * r.width + ix;
+      out << ix << ',' << iy << ',' << r.pixelRadiance(ix, iy) << ',' << r.pixelStdError(ix, iy);
+      for (int c = 0; c < 3; ++c) out << ',' << r.xyz[3 * i + c];
+      for (int c = 0; c < 3; ++c) out << ',' << img.rgb[3 * i + c];
+      out << '\n';
+    }
+  out.precision(old_precision);
 }
 
 }  // namespace diffray::render
