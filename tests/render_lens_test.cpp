@@ -208,9 +208,10 @@ TEST(StatRenderLens, DefocusedLensFailsTheImagePlanePattern) {
 TEST(RenderLens, TableRangeLeavesTheDeflectionOut) {
   // The table of a lens holds only the diffraction around the geometric ray: its shift range is the largest
   // |α_o − α_i + x/f| over the opening's points x. The set-up's shift bound (render/light_setup.h) pairs every
-  // incident direction (the beam, and light coming back from the wall, half-width W at z = f) with every
-  // outgoing one (to the wall), so Δ ≈ (W + W − x)/f + x/f... at most (2W + a/2)/f with the lens; without it,
-  // at the plate's corners (half-width h), (2W + 2h)/f, wider although no lens deflection is covered.
+  // incident direction with every outgoing one (to the wall, half-width W at z = f). Photons do not bounce on
+  // from the wall (diffuse_bounces = 0), so the only incident direction is the beam's (α_i = 0) and
+  // Δ = |(X − x)/f + x/f| ≤ W/f with the lens; without it, at the plate's corners (half-width h), (W + h)/f,
+  // wider although no lens deflection is covered.
   validate::LensPsfImageSetup s;
   s.width = s.height = 31;  // coarse pixels: small tables, a fast test (the range does not depend on them)
   const render::LightScene lens_scene = validate::lensPsfImageScene(s);
@@ -218,15 +219,16 @@ TEST(RenderLens, TableRangeLeavesTheDeflectionOut) {
   aperture_scene.occluders[0].kind = render::OccluderSpec::Kind::Aperture;
   const auto lens = render::prepareScene(lens_scene, true), aperture = render::prepareScene(aperture_scene, true);
   const double W = lens_scene.rects[0].half_x_m, f = s.focal_length_m, lambda = s.wavelength_m;
-  const double a = s.aperture_width_m, h = lens_scene.occluders[0].half_x_m;
+  const double h = lens_scene.occluders[0].half_x_m;
   const double lens_delta = -lens->scene.occluders()[0].table_x->layout().u0_per_m * lambda;
   const double aperture_delta = -aperture->scene.occluders()[0].table_x->layout().u0_per_m * lambda;
   std::printf("table half-ranges (direction cosine): lens %.5f, same opening without the lens %.5f\n", lens_delta,
               aperture_delta);
   // 1.02: the set-up's margin; 1 %: the distances to the wall differ from f by < 0.1 %, and the table's
   // range is rounded to whole cells.
-  EXPECT_NEAR(lens_delta, 1.02 * (2 * W + 0.5 * a) / f, 0.01 * lens_delta);
-  EXPECT_NEAR(aperture_delta, 1.02 * (2 * W + 2 * h) / f, 0.01 * aperture_delta);
+  ASSERT_EQ(lens_scene.settings.diffuse_bounces, 0);
+  EXPECT_NEAR(lens_delta, 1.02 * W / f, 0.01 * lens_delta);
+  EXPECT_NEAR(aperture_delta, 1.02 * (W + h) / f, 0.01 * aperture_delta);
   EXPECT_GT(lens->scene.occluders()[0].focal_length_m, 0.0);
   EXPECT_EQ(aperture->scene.occluders()[0].focal_length_m, 0.0);
 }

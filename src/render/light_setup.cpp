@@ -22,19 +22,25 @@ struct ShiftBounds {
   double dx = 0.0, dy = 0.0;  ///< largest change of the direction cosine along ex and along ey
 };
 
-// Δ along the occluder's axes between every incident direction (lights, other objects) and every outgoing
-// one (other objects), sampled at the points `here` of the occluder (its centre and corners), plus
+// Δ along the occluder's axes between every incident direction (lights, other occluders, and diffuse
+// rectangles when photons bounce on from them: settings.diffuse_bounces > 0) and every outgoing one (other
+// objects), sampled at the points `here` of the occluder (its centre and corners), plus
 // `deflection` (the direction cosines' change a lens adds at those points, along ex and ey, which the table
 // need not hold: lensShiftBounds).
 ShiftBounds shiftBounds(const LightScene& s, int k, const std::vector<Vec3>& here, double deflection_x = 0.0,
                         double deflection_y = 0.0) {
   const OccluderSpec& occ = s.occluders[k];
   const geometry::Frame& f = occ.frame;
-  std::vector<Vec3> others;  // points of every other object
+  std::vector<Vec3> others, senders;  // points of every other object; of those light can come from
   for (int i = 0; i < s.targetCount(); ++i) {
     if (i == static_cast<int>(s.rects.size()) + k) continue;
     const LightScene::Target t = s.target(i);
-    for (const Vec3& p : rectPoints(*t.frame, t.half_x_m, t.half_y_m)) others.push_back(p);
+    // A diffuse rectangle sends light on only if photons continue after a diffuse bounce.
+    const bool sends = i >= static_cast<int>(s.rects.size()) || s.settings.diffuse_bounces > 0;
+    for (const Vec3& p : rectPoints(*t.frame, t.half_x_m, t.half_y_m)) {
+      others.push_back(p);
+      if (sends) senders.push_back(p);
+    }
   }
   std::vector<Vec3> in_dirs, out_dirs;
   for (const Vec3& h : here) {
@@ -47,10 +53,9 @@ ShiftBounds shiftBounds(const LightScene& s, int k, const std::vector<Vec3>& her
         for (const Vec3& p : rectPoints(l.frame, l.half_x_m, l.half_y_m))
           if ((h - p).norm() > 0) in_dirs.push_back((h - p).normalized());
     for (const Vec3& p : others)
-      if ((p - h).norm() > 0) {
-        in_dirs.push_back((h - p).normalized());
-        out_dirs.push_back((p - h).normalized());
-      }
+      if ((p - h).norm() > 0) out_dirs.push_back((p - h).normalized());
+    for (const Vec3& p : senders)
+      if ((p - h).norm() > 0) in_dirs.push_back((h - p).normalized());
   }
   for (const Light& l : s.lights)
     if (l.kind == Light::Kind::Collimated) in_dirs.push_back(l.frame.n);
@@ -75,9 +80,9 @@ ShiftBounds shiftBounds(const LightScene& s, int k) {
 // both ways: it misses the shifts a ray needs where −x/f and α_o − α_i differ in sign (a strong lens, f well
 // below the distances to the objects: a focal spot partly outside the table), and it counts the geometric
 // spread of the whole plate, which the lens undoes (rays from every x meet at the focus), so it is wider
-// than needed (1.3× for rooms/light/lens-psf.json, test RenderLens; a plate many times its opening, or a
-// lens focusing a wide field onto a small wall, many times): more u-cells at the same du, and past the
-// 8-million-cell cap coarser ones that blur the focal spot.
+// than needed ((W + h)/f against W/f for a beam onto a wall of half-width W in the focal plane, plate
+// half-width h: 1.44× for rooms/light/lens-psf.json, test RenderLens): more u-cells at the same du, and past
+// the 8-million-cell cap coarser ones that blur the focal spot.
 ShiftBounds lensShiftBounds(const LightScene& s, int k) {
   const OccluderSpec& occ = s.occluders[k];
   const geometry::Frame& f = occ.frame;
