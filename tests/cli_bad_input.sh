@@ -35,6 +35,9 @@ expect_error "zero-width slit"        validate slit-fraunhofer --width 0 --rays 
 expect_error "negative width"         validate double-slit --width -1e-4 --rays 1000 "$csv"
 expect_error "zero wavelength"        validate slit-fresnel --wavelength 0 --rays 1000 "$csv"
 expect_error "NaN width"              validate slit-fraunhofer --width nan --rays 1000 "$csv"
+expect_error "distance 1e30 m (beyond float)" validate slit-fraunhofer --distance 1e30 --rays 1000 "$csv"
+expect_error "half-plane source at 1e30 m"    validate half-plane --source-distance 1e30 --rays 1000 "$csv"
+expect_error "door-rs at 900 kHz"     validate door-rs --freq 9e5 --rays 1000 "$csv"
 expect_error "infinite distance"      validate slit-fraunhofer --distance inf --rays 1000 "$csv"
 expect_error "negative frequency"     validate door-rs --freq 125,-250 --rays 1000 "$csv"
 expect_error "spacing below width"    validate double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"
@@ -89,6 +92,7 @@ expect_ir_error "undefined material"    "{$mat, \"geometry\": [{\"box\": {\"min\
 expect_ir_error "absorption above 1"    "{\"materials\": {\"w\": {\"absorption\": 1.5, \"scattering\": 0.2}}, $box, $src, $lis}"
 expect_ir_error "infinite coordinate"   "{$mat, $box, \"sources\": [{\"position\": [1e999,1,1]}], $lis}"
 expect_ir_error "null (NaN) coordinate" "{$mat, $box, \"sources\": [{\"position\": [null,1,1]}], $lis}"
+expect_ir_error "source at 1e308 m (beyond float)" "{$mat, $box, \"sources\": [{\"position\": [1e308,1,1]}], $lis}"
 expect_ir_error "missing OBJ"           "{$mat, \"geometry\": [{\"obj\": {\"file\": \"nope.obj\", \"default_material\": \"w\"}}], $src, $lis}"
 expect_ir_error "zero listener radius"  "{$mat, $box, $src, \"listeners\": [{\"position\": [3,2,1.2], \"radius_m\": 0}]}"
 expect_ir_error "no listeners"          "{$mat, $box, $src}"
@@ -376,6 +380,11 @@ expect_error "render: photons and spp"    render "$tmp/light.json" -o "$png" --p
 expect_error "render: not a PNG"          render "$tmp/light.json" -o "$tmp/out.csv"
 expect_error "render: missing folder"     render "$tmp/light.json" -o "$tmp/no/such/dir/out.png"
 expect_error "render: zero exposure"      render "$tmp/light.json" -o "$png" --photons 100 --exposure 0
+printf '{%s, "lights": [{"type": "point", "position": [-1e308,0,0.5]}]}\n' "$light" >"$tmp/far.json"
+expect_clean "render: light at -1e308 m"  "out.csv*" "lights[0].position[0]: must be within" render "$tmp/far.json" -o "$png"
+printf '{"rectangles": [{"centre": [0,0,0], "normal": [0,0,1], "width_m": 1e300, "height_m": 1}], "lights": [{"type": "point", "position": [0,0,0.5]}],
+  "camera": {"position": [0,0,1], "look_at": [0,0,0], "fov_deg": 40, "pixels": [8, 8]}}\n' >"$tmp/huge.json"
+expect_clean "render: 1e300 m wide wall"  "out.csv*" "rectangles[0].width_m: must be at most" render "$tmp/huge.json" -o "$png"
 expect_error "render: float format"      render "$tmp/light.json" -o "$png" --photons 100 --float tiff
 expect_error "render: CSV folder"         render "$tmp/light.json" -o "$png" --photons 100 --csv "$tmp/no/such/dir/p.csv"
 expect_error "render: CSV extension"      render "$tmp/light.json" -o "$png" --photons 100 --csv "$tmp/out.csv.txt"

@@ -96,6 +96,8 @@ TEST(RoomObj, ErrorsNameFileAndLine) {
   EXPECT_EQ(errorOf("v 0 0\n"), "t.obj:1: a vertex needs 3 coordinates");
   EXPECT_EQ(errorOf("\n\nv 0 x 0\n"), "t.obj:3: bad coordinate \"x\"");
   EXPECT_EQ(errorOf("v 0 0 inf\n"), "t.obj:1: coordinate \"inf\" is not finite");
+  // Finite but beyond what Embree's float scene holds (it would assert inside rtcIntersect1).
+  EXPECT_EQ(errorOf("v 0 0 2e6\n"), "t.obj:1: coordinate \"2e6\" is beyond ±1e6 m (scenes are in float metres)");
   EXPECT_EQ(errorOf("v 0 0 0\nv 1 0 0\nf 1 2\n"), "t.obj:3: a face needs at least 3 vertices");
   EXPECT_EQ(errorOf("v 0 0 0\nf a 1 1\n"), "t.obj:2: bad vertex reference \"a\"");
   EXPECT_EQ(errorOf("vx 0 0 0\n"), "t.obj:1: unknown OBJ statement \"vx\"");

@@ -65,8 +65,8 @@ Vec3 optionalVec(const JsonField& f, const char* key, const Vec3& fallback) {
 // The rectangle keys shared by rectangles and occluders: centre, normal, up, width_m, height_m.
 void parseRect(const JsonField& f, geometry::Frame& frame, double& half_x, double& half_y) {
   frame = rectFrame(f["centre"].vec3(), f["normal"].vec3(), optionalVec(f, "up", Vec3(0, 1, 0)), f.where());
-  half_x = 0.5 * f["width_m"].positive();
-  half_y = 0.5 * f["height_m"].positive();
+  half_x = 0.5 * f["width_m"].length();
+  half_y = 0.5 * f["height_m"].length();
 }
 
 Albedo parseAlbedo(const JsonField& f) {
@@ -137,11 +137,11 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
   parseRect(f, o.frame, o.half_x_m, o.half_y_m);
   switch (o.kind) {
     case OccluderSpec::Kind::DoubleSlit:
-      o.spacing_m = f["spacing_m"].positive();
+      o.spacing_m = f["spacing_m"].length();
       [[fallthrough]];
     case OccluderSpec::Kind::Slit: {
-      o.slit_width_m = f["slit_width_m"].positive();
-      if (f.has("slit_height_m")) o.slit_height_m = f["slit_height_m"].positive();
+      o.slit_width_m = f["slit_width_m"].length();
+      if (f.has("slit_height_m")) o.slit_height_m = f["slit_height_m"].length();
       if (o.kind == OccluderSpec::Kind::DoubleSlit && !(o.spacing_m > o.slit_width_m))
         f["spacing_m"].fail("must exceed slit_width_m (the slits would overlap)");
       const double span = o.slit_width_m + o.spacing_m;
@@ -150,16 +150,16 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
       break;
     }
     case OccluderSpec::Kind::Lens:
-      o.focal_length_m = f["focal_length_m"].positive();
+      o.focal_length_m = f["focal_length_m"].length();
       [[fallthrough]];
     case OccluderSpec::Kind::Aperture:
-      o.aperture_width_m = f["aperture_width_m"].positive();
-      o.aperture_height_m = f["aperture_height_m"].positive();
+      o.aperture_width_m = f["aperture_width_m"].length();
+      o.aperture_height_m = f["aperture_height_m"].length();
       if (o.aperture_width_m > 2.0 * o.half_x_m) f["aperture_width_m"].fail("exceeds the occluder's width_m");
       if (o.aperture_height_m > 2.0 * o.half_y_m) f["aperture_height_m"].fail("exceeds the occluder's height_m");
       break;
     case OccluderSpec::Kind::Grating:
-      o.period_m = f["period_m"].positive();
+      o.period_m = f["period_m"].length();
       o.modulation = f["modulation"].numberIn(0.0, 1000.0);
       if (f.has("reflectance")) o.reflectance = f["reflectance"].numberIn(0.0, 1.0);
       break;
@@ -201,8 +201,8 @@ Light parseLight(const JsonField& f, int index, const std::vector<std::string>& 
     l.spectrum = parseSpectrum(f, Spectrum::Kind::Laser);
     l.position_m = f["position"].vec3();
     l.frame = rectFrame(l.position_m, f["direction"].vec3(), optionalVec(f, "up", Vec3(0, 1, 0)), f.where());
-    l.half_x_m = 0.5 * f["width_m"].positive();
-    l.half_y_m = f.has("height_m") ? 0.5 * f["height_m"].positive() : l.half_x_m;
+    l.half_x_m = 0.5 * f["width_m"].length();
+    l.half_y_m = f.has("height_m") ? 0.5 * f["height_m"].length() : l.half_x_m;
   } else if (type == "area") {
     f.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "power_w", "spectrum",
                  "wavelength_nm", "two_sided", "aim"});

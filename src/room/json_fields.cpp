@@ -156,6 +156,12 @@ double JsonField::positive() const {
   return v;
 }
 
+double JsonField::length() const {
+  const double v = positive();
+  if (v > 2.0 * kMaxCoordinateM) fail("must be at most " + formatNumber(2.0 * kMaxCoordinateM) + " m, got " + formatNumber(v));
+  return v;
+}
+
 std::string JsonField::string() const {
   if (!value_->is_string()) fail("must be a string, got " + describeJson(*value_));
   std::string s = value_->get<std::string>();
@@ -165,7 +171,14 @@ std::string JsonField::string() const {
 
 core::Vec3 JsonField::vec3() const {
   arraySize(3);
-  return core::Vec3(at(0).number(), at(1).number(), at(2).number());
+  double c[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = at(i).number();
+    if (std::abs(c[i]) > kMaxCoordinateM)
+      at(i).fail("must be within ±" + formatNumber(kMaxCoordinateM) + " (scenes are in float metres), got " +
+                 formatNumber(c[i]));
+  }
+  return core::Vec3(c[0], c[1], c[2]);
 }
 
 std::int64_t JsonField::integerIn(std::int64_t lo, std::int64_t hi) const {

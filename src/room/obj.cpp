@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "diffray/core/error.h"
+#include "diffray/room/json_fields.h"
 
 namespace diffray::room {
 namespace {
@@ -69,6 +70,8 @@ ObjModel parseObj(std::istream& in, const std::string& file) {
         }
         if (used != t.size()) fail(file, line, "bad coordinate \"" + t + "\"");
         if (!std::isfinite(c)) fail(file, line, "coordinate \"" + t + "\" is not finite");
+        if (std::abs(c) > kMaxCoordinateM)
+          fail(file, line, "coordinate \"" + t + "\" is beyond ±1e6 m (scenes are in float metres)");
       }
       m.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
     } else if (word == "f") {

@@ -38,7 +38,7 @@ OccluderAxis::Faces faces(const JsonField& o, OccluderAxis::Faces fallback) {
   o["faces"].fail("must be \"rigid\", \"soft\" or \"kirchhoff\", got \"" + f + "\"");
 }
 
-double edgeZone(const JsonField& o) { return o.has("extent_m") ? o["extent_m"].positive() : kDefaultEdgeZoneM; }
+double edgeZone(const JsonField& o) { return o.has("extent_m") ? o["extent_m"].length() : kDefaultEdgeZoneM; }
 
 // A door or slit given by an existing opening group of the mesh: its frame and rectangle from the group's
 // triangles, which must be coplanar.
@@ -84,8 +84,8 @@ Occluder opening(const JsonField& o, Room& room, const std::string& type) {
     occ.origin_m = o["centre"].vec3();
     // "up" is optional: name the occluder itself when it was not given (o["up"] would fail as missing).
     setOccluderFrame(occ, unitVector(o["normal"]), up, o.has("up") ? o["up"].where() : o.where());
-    occ.half_x_m = 0.5 * o["width_m"].positive();
-    occ.half_y_m = 0.5 * o["height_m"].positive();
+    occ.half_x_m = 0.5 * o["width_m"].length();
+    occ.half_y_m = 0.5 * o["height_m"].length();
   } else {
     for (const char* k : {"centre", "normal", "width_m", "height_m"})
       if (o.has(k)) o[k].fail("give either \"group\" or an explicit rectangle (centre, normal, width_m, height_m)");
@@ -96,9 +96,9 @@ Occluder opening(const JsonField& o, Room& room, const std::string& type) {
   if (o.has("slits")) {
     occ.x.kind = OccluderAxis::Kind::Slits;
     occ.x.count = static_cast<int>(o["slits"].integerIn(1, 64));
-    const double w = o["slit_width_m"].positive();
+    const double w = o["slit_width_m"].length();
     occ.x.lo_m = -0.5 * w, occ.x.hi_m = 0.5 * w;
-    occ.x.spacing_m = occ.x.count > 1 ? o["spacing_m"].positive() : 0.0;
+    occ.x.spacing_m = occ.x.count > 1 ? o["spacing_m"].length() : 0.0;
     if (occ.x.count > 1 && occ.x.spacing_m <= w) o["spacing_m"].fail("must exceed slit_width_m");
     if ((occ.x.count - 1) * occ.x.spacing_m + w > 2.0 * occ.half_x_m * (1 + 1e-9))
       o["slits"].fail("the slits do not fit in the occluder's width");
@@ -227,7 +227,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         base.arraySize(2);
         const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
         const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
-        const double h = o["height_m"].positive();
+        const double h = o["height_m"].length();
         // Checked here so that the message names the field (Room::addPolygon only knows the group).
         if (!((p1 - p0).norm() > 0.0)) base.fail("the barrier's base has zero length");
         if (!(up.cross((p1 - p0).normalized()).norm() > 1e-6))
@@ -249,12 +249,12 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       claimName(names, occ.name, o);
       occ.origin_m = o["centre"].vec3();
       setOccluderFrame(occ, unitVector(o["normal"]), o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1), o.where());
-      occ.half_x_m = 0.5 * o["width_m"].positive();
-      occ.half_y_m = 0.5 * o["height_m"].positive();
+      occ.half_x_m = 0.5 * o["width_m"].length();
+      occ.half_y_m = 0.5 * o["height_m"].length();
       occ.x.kind = OccluderAxis::Kind::Grating;
-      occ.x.period_m = o["period_m"].positive();
+      occ.x.period_m = o["period_m"].length();
       // The phase amplitude m/2 (radians) wbsdf::PhaseGrating accepts; checked here to name the field.
-      occ.x.modulation_m = o["modulation_m"].positive();
+      occ.x.modulation_m = o["modulation_m"].length();
       if (occ.x.modulation_m > 1000.0) o["modulation_m"].fail("must be at most 1000 (phase amplitude m/2 ≤ 500 rad)");
       occ.reflect = true;
       occ.material = resolve(o["material"]);

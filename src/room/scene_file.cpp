@@ -220,7 +220,7 @@ struct SceneParser {
       r.name = l.has("name") ? l["name"].string() : "R" + std::to_string(i + 1);
       if (!names.insert(r.name).second) l["name"].fail("duplicate listener name " + inQuotes(r.name));
       r.position_m = l["position"].vec3();
-      if (l.has("radius_m")) r.radius_m = l["radius_m"].positive();
+      if (l.has("radius_m")) r.radius_m = l["radius_m"].length();
       room.listeners.push_back(r);
     }
   }

@@ -213,10 +213,12 @@ CaseInfo slitFresnelCase() {
 CaseInfo doorRsCase() {
   CaseInfo c{"door-rs", "0.9 m doorway (2D), line 2 m behind, vs Rayleigh–Sommerfeld quadrature", {}, 32'000'000,
              {}};
-  c.params = {{"width", {0.9}, "opening width (m)"},
-              {"freq", {125, 250, 500, 1000}, "frequencies (Hz), comma-separated"},
-              {"distance", {2.0}, "opening to the observation line (m)"},
-              {"screen", {3.0}, "half-length of the observation line (m)"},
+  // Bounds keep the references' quadratures (∝ width/λ per point) to seconds: an acoustic doorway, audio
+  // frequencies.
+  c.params = {{"width", {0.9}, "opening width (m)", 0.0, false, 50.0},
+              {"freq", {125, 250, 500, 1000}, "frequencies (Hz), comma-separated, up to 20 kHz", 0.0, false, 20000.5},
+              {"distance", {2.0}, "opening to the observation line (m)", 1e-6, true, 1000.0},
+              {"screen", {3.0}, "half-length of the observation line (m)", 0.0, false, 100.0},
               {"bins", {121}, "bins along the line", 3.0, true},
               {"temperature", {20.0}, "air temperature (°C), sets the speed of sound", -273.15}};
   c.angle_impact = true;

@@ -61,7 +61,7 @@ Params resolveParams(const CaseInfo& info, const Params& given) {
       if (!above || !(v < spec.max)) {
         std::ostringstream msg;
         msg << "must be " << (spec.min_inclusive ? ">= " : "> ") << spec.min;
-        if (spec.max < 1e300) msg << " and < " << spec.max;
+        msg << " and < " << spec.max;
         msg << ", got " << v;
         throw core::InputError("--" + name, msg.str());
       }

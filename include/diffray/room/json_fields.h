@@ -15,6 +15,10 @@
 
 namespace diffray::room {
 
+/// The largest coordinate (metres, or a direction's component) a scene may use: Embree holds scenes and rays
+/// in float, where 1e6 m still resolves 0.06 m and anything near 3.4e38 becomes infinite (an Embree assertion).
+inline constexpr double kMaxCoordinateM = 1e6;
+
 class JsonField {
  public:
   JsonField(const nlohmann::json& value, std::string file, std::string path = "");
@@ -42,8 +46,10 @@ class JsonField {
   double number() const;  ///< a finite number
   double numberIn(double lo, double hi) const;
   double positive() const;
+  /// A positive length in metres, at most 2·kMaxCoordinateM (a size of something in the scene).
+  double length() const;
   std::string string() const;  ///< a non-empty string
-  core::Vec3 vec3() const;     ///< an array of 3 finite numbers
+  core::Vec3 vec3() const;     ///< an array of 3 finite numbers, each within ±kMaxCoordinateM
   std::int64_t integerIn(std::int64_t lo, std::int64_t hi) const;
 
  private:

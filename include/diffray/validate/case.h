@@ -19,7 +19,10 @@ struct ParamSpec {
   std::string help;
   double min = 0.0;                ///< values must be > min (or >= min when min_inclusive) ...
   bool min_inclusive = false;
-  double max = 1e300;              ///< ... and < max; checked by resolveParams before any case runs
+  /// ... and < max; checked by resolveParams before any case runs. The default bounds every length (and
+  /// any other value) by the scenes' float range (room::kMaxCoordinateM, 1e6 m): beyond it Embree would see
+  /// infinite coordinates.
+  double max = 1e6;
 };
 
 /// One receiver bin (or one grating order) of a case: screen position, traced and reference values.
