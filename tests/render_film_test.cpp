@@ -1,8 +1,10 @@
 // render/film.h's CSV of pixels: every pixel once, in image order, with the values the RenderResult holds
 // (radiance, standard error, XYZ) and the linear sRGB that linearSrgb() gives, to the 9 digits written.
+// And every shipped light scene (rooms/light/*.json) loads: the gallery's commands keep working.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -59,6 +61,20 @@ TEST(RenderFilm, PixelCsvHoldsEveryPixelInImageOrder) {
   }
   EXPECT_EQ(rows, r.width * r.height);
   EXPECT_GT(lit, rows / 2);  // the wall fills the view: most values compared are not zeros
+}
+
+TEST(RenderShippedScenes, EveryLightSceneLoads) {
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(DIFFRAY_SOURCE_DIR) + "/rooms/light")) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    dr::LightScene s;
+    EXPECT_NO_THROW(s = dr::loadLightScene(entry.path().string()));
+    EXPECT_FALSE(s.lights.empty());
+    EXPECT_FALSE(s.rects.empty());
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 10);  // the gallery's scenes (README, rooms/light/README.md)
 }
 
 }  // namespace
