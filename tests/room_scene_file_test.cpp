@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -374,4 +375,20 @@ TEST(RoomSceneFile, DegenerateObjFacesAreSkippedWithAWarning) {
   EXPECT_NEAR(room.volume(), 1.0, 1e-12);
   ASSERT_EQ(warnings.size(), 1u);
   expectMessage(warnings[0], {"cube.obj: skipped 2 face(s) of zero area"});
+}
+
+// Every shipped room (rooms/*.json but the material library) loads: the README's commands keep working.
+TEST(RoomShippedScenes, EveryRoomLoads) {
+  int rooms = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kRooms)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "materials.json") continue;
+    SCOPED_TRACE(entry.path().string());
+    dr::Room room;
+    EXPECT_NO_THROW(room = dr::loadRoom(entry.path().string()));
+    EXPECT_FALSE(room.sources.empty());
+    EXPECT_FALSE(room.listeners.empty());
+    EXPECT_GT(room.mesh.triangleCount(), 0);
+    ++rooms;
+  }
+  EXPECT_GE(rooms, 5);
 }
