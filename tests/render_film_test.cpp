@@ -39,7 +39,7 @@ TEST(RenderFilm, PixelCsvHoldsEveryPixelInImageOrder) {
   const diffray::image::Image rgb = dr::linearSrgb(r);
 
   std::ostringstream out;
-  dr::writePixelCsv(out, r);
+  dr::writePixelCsv(out, r, rgb);
   std::istringstream in(out.str());
   std::string line;
   ASSERT_TRUE(std::getline(in, line));

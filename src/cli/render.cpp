@@ -81,15 +81,16 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
     progress.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+    const image::Image img = render::linearSrgb(r);
     const double exposure = o->exposure > 0 ? o->exposure
                             : scene.settings.exposure > 0 ? scene.settings.exposure
-                                                          : render::autoExposure(r);
-    const image::Image img = render::linearSrgb(r);
+                                                          : render::autoExposure(img);
     image::writePng(o->out, img, exposure);
     const std::string float_file = withExtension(o->out, "." + o->float_format);
     if (o->float_format == "exr") image::writeExr(float_file, img);
     else image::writePfm(float_file, img);
-    if (!o->csv.empty()) core::writeFileAtomically(o->csv, [&](std::ostream& out) { render::writePixelCsv(out, r); });
+    if (!o->csv.empty())
+      core::writeFileAtomically(o->csv, [&](std::ostream& out) { render::writePixelCsv(out, r, img); });
     nlohmann::json files{{"png", o->out}, {o->float_format, float_file}};
     if (!o->csv.empty()) files["csv"] = o->csv;
     const double p = r.emitted;

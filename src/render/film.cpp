@@ -21,8 +21,7 @@ image::Image linearSrgb(const RenderResult& r) {
   return img;
 }
 
-double autoExposure(const RenderResult& r) {
-  const image::Image img = linearSrgb(r);
+double autoExposure(const image::Image& img) {
   std::vector<double> peak;  // per pixel: its largest linear sRGB component, where positive
   for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) {
     const double m = std::max({img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]});
@@ -34,8 +33,7 @@ double autoExposure(const RenderResult& r) {
   return 1.0 / peak[k];
 }
 
-void writePixelCsv(std::ostream& out, const RenderResult& r) {
-  const image::Image img = linearSrgb(r);
+void writePixelCsv(std::ostream& out, const RenderResult& r, const image::Image& img) {
   const auto old_precision = out.precision(9);
   out << "ix,iy,radiance_w_m2_sr,std_error_w_m2_sr,X,Y,Z,r,g,b\n";
   for (int iy = 0; iy < r.height; ++iy)

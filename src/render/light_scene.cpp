@@ -167,17 +167,12 @@ OccluderSpec parseOccluder(const JsonField& f, int index) {
   return o;
 }
 
-// The index of the rectangle or occluder named by `aim` (an area light's; a point light's is read inline).
+// The index of the rectangle or occluder named by `aim` (point and area lights).
 int parseAim(const JsonField& f, const std::vector<std::string>& target_names) {
   const std::string t = f["aim"].string();
   const auto it = std::find(target_names.begin(), target_names.end(), t);
   if (it == target_names.end()) f["aim"].fail("no rectangle or occluder is named \"" + t + "\"");
   return static_cast<int>(it - target_names.begin());
-}
-
-bool parseBool(const JsonField& f) {
-  if (!f.json().is_boolean()) f.fail("must be true or false, got " + room::describeJson(f.json()));
-  return f.json().get<bool>();
 }
 
 Light parseLight(const JsonField& f, int index, const std::vector<std::string>& target_names) {
@@ -188,12 +183,6 @@ Light parseLight(const JsonField& f, int index, const std::vector<std::string>& 
     l.kind = Light::Kind::Point;
     l.spectrum = parseSpectrum(f, Spectrum::Kind::White);
     l.position_m = f["position"].vec3();
-    if (f.has("aim")) {
-      const std::string t = f["aim"].string();
-      const auto it = std::find(target_names.begin(), target_names.end(), t);
-      if (it == target_names.end()) f["aim"].fail("no rectangle or occluder is named \"" + t + "\"");
-      l.aim = static_cast<int>(it - target_names.begin());
-    }
   } else if (type == "laser") {
     f.allowKeys({"type", "name", "position", "direction", "up", "width_m", "height_m", "power_w", "spectrum",
                  "wavelength_nm"});
@@ -210,11 +199,11 @@ Light parseLight(const JsonField& f, int index, const std::vector<std::string>& 
     l.spectrum = parseSpectrum(f, Spectrum::Kind::White);
     parseRect(f, l.frame, l.half_x_m, l.half_y_m);
     l.position_m = l.frame.origin;
-    if (f.has("two_sided")) l.two_sided = parseBool(f["two_sided"]);
-    if (f.has("aim")) l.aim = parseAim(f, target_names);
+    if (f.has("two_sided")) l.two_sided = f["two_sided"].boolean();
   } else {
     f["type"].fail("unknown light type \"" + type + "\" (types: point, laser, area)");
   }
+  if (f.has("aim")) l.aim = parseAim(f, target_names);  // point and area lights (allowKeys above)
   l.name = f.has("name") ? f["name"].string() : type + std::to_string(index + 1);
   l.power_w = f.has("power_w") ? f["power_w"].positive() : 1.0;
   return l;

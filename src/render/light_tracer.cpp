@@ -263,11 +263,8 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
     }
     acc.radiance.closeChunk();
   };
-  auto progress = [&](std::uint64_t n) {
-    if (options.on_progress) options.on_progress(n);
-  };
   return core::deterministicReduce<RenderResult>(options.photons, options.chunk_photons, options.seed, make, body,
-                                                 progress);
+                                                 core::reportProgressTo(options.on_progress));
 }
 
 }  // namespace diffray::render

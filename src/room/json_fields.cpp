@@ -162,6 +162,11 @@ double JsonField::length() const {
   return v;
 }
 
+bool JsonField::boolean() const {
+  if (!value_->is_boolean()) fail("must be true or false, got " + describeJson(*value_));
+  return value_->get<bool>();
+}
+
 std::string JsonField::string() const {
   if (!value_->is_string()) fail("must be a string, got " + describeJson(*value_));
   std::string s = value_->get<std::string>();

@@ -586,11 +586,8 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     for (auto& h : acc.listeners) h.closeChunk();
     if (options.in_flight) acc.in_flight.closeChunk();
   };
-  auto on_chunk = [&](std::uint64_t n) {
-    if (options.on_progress) options.on_progress(n);
-  };
-  RoomTraceResult result =
-      core::deterministicReduce<RoomTraceResult>(options.rays, options.chunk_rays, options.seed, make, body, on_chunk);
+  RoomTraceResult result = core::deterministicReduce<RoomTraceResult>(
+      options.rays, options.chunk_rays, options.seed, make, body, core::reportProgressTo(options.on_progress));
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

@@ -239,11 +239,8 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
     for (auto& t : acc.spheres) t.closeChunk();
     acc.far_field.closeChunk();
   };
-  auto progress = [&](std::uint64_t n) {
-    if (options.on_progress) options.on_progress(n);
-  };
   return core::deterministicReduce<TraceResult>(options.rays, options.chunk_rays, options.seed, make, body,
-                                                progress);
+                                                core::reportProgressTo(options.on_progress));
 }
 
 }  // namespace diffray::transport

@@ -28,6 +28,7 @@
 #include "diffray/render/light_setup.h"
 #include "diffray/render/light_tracer.h"
 #include "diffray/validate/case.h"
+#include "diffray/validate/image_setup.h"
 
 namespace diffray::validate {
 
@@ -58,7 +59,7 @@ CaseInfo imageCdCase() {
               {"pixels", {64}, "image columns across the 4 cm strip around the first order", 8.0, true, 4097.0}};
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (o.model != "wigner") throw core::InputError("--model", "image-cd takes the wigner model only");
+    const ImageRunOptions io = imageRunOptions(o, "image-cd");
     const double lambda = p.at("wavelength")[0], period = p.at("period")[0], m = p.at("modulation")[0];
     const double inc = p.at("incidence")[0] * kDegToRad, height = p.at("height")[0], beam = p.at("beam")[0];
     const int columns = static_cast<int>(p.at("pixels")[0]);
@@ -113,16 +114,10 @@ CaseInfo imageCdCase() {
     s.camera.fov_x_deg = 2.0 * std::atan(0.5 * strip_m / (height - cam_y)) / kDegToRad;
     s.camera.width = columns;
     s.camera.height = std::max(4, columns / 4);
-    s.settings.photons = o.rays ? o.rays : 2'000'000;
-    s.settings.seed = o.seed;
 
-    const auto prepared = render::prepareScene(s);
-    render::RenderOptions ro;
-    ro.photons = s.settings.photons;
-    ro.seed = o.seed;
-    ro.on_progress = o.on_progress;
-    const render::RenderResult img = render::renderLight(*prepared, ro);
-    const render::Camera& cam = prepared->camera;
+    double seconds_render = 0.0;  // not reported: the case's whole time is (r.seconds)
+    const render::RenderResult img = renderImageScene(s, io, 2'000'000, seconds_render);
+    const render::Camera cam(s.camera);
 
     // Columns summed over rows, the brightest one and its lobe.
     std::vector<double> col(static_cast<std::size_t>(cam.width()), 0.0), col_var(col.size(), 0.0);

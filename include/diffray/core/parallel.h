@@ -12,6 +12,7 @@
 #include <tbb/partitioner.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "diffray/core/rng.h"
@@ -27,6 +28,13 @@ class ThreadLimit {
  private:
   std::unique_ptr<tbb::global_control> control_;
 };
+
+/// An on_chunk for deterministicReduce that forwards to an optional progress callback (none: nothing).
+inline auto reportProgressTo(const std::function<void(std::uint64_t)>& on_progress) {
+  return [&on_progress](std::uint64_t n) {
+    if (on_progress) on_progress(n);
+  };
+}
 
 /// Runs `body(acc, rng, begin, end)` over [0, count) in fixed chunks and merges the per-chunk
 /// accumulators with `acc.merge(other)` in a thread-count-independent order. `make()` builds an empty

@@ -14,11 +14,13 @@ image::Image linearSrgb(const RenderResult& r);
 
 /// The exposure that maps the 99th percentile of the pixels' largest linear sRGB component (over pixels where it
 /// is > 0) to 1, so that saturated colours (a red laser) do not clip; 1 when no pixel is positive.
-double autoExposure(const RenderResult& r);
+/// `linear_rgb`: linearSrgb() of the render.
+double autoExposure(const image::Image& linear_rgb);
 
 /// Every pixel as a CSV row, top row first: `ix,iy,radiance_w_m2_sr,std_error_w_m2_sr,X,Y,Z,r,g,b` — the
 /// spectrally integrated mean radiance and its standard error (from the chunks' scatter), CIE XYZ and linear
 /// sRGB, all unscaled (no exposure), after a header line. Values to 9 significant digits.
-void writePixelCsv(std::ostream& out, const RenderResult& r);
+/// `linear_rgb`: linearSrgb(r).
+void writePixelCsv(std::ostream& out, const RenderResult& r, const image::Image& linear_rgb);
 
 }  // namespace diffray::render

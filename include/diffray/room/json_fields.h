@@ -49,6 +49,7 @@ class JsonField {
   /// A positive length in metres, at most 2·kMaxCoordinateM (a size of something in the scene).
   double length() const;
   std::string string() const;  ///< a non-empty string
+  bool boolean() const;        ///< true or false
   core::Vec3 vec3() const;     ///< an array of 3 finite numbers, each within ±kMaxCoordinateM
   std::int64_t integerIn(std::int64_t lo, std::int64_t hi) const;
 
