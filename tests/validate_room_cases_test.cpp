@@ -54,11 +54,13 @@ TEST(StatValidateRoom, DiffuseShoeboxT30IsEyringsWithinEightPercent) {
 }
 
 TEST(ValidateRoom, DecayMetricsMatchTheClosedForms) {
-  // The target: design.md §2's values through the histogram path within 0.5 %. (The synthesized-WAV
-  // path's own, stricter target is reported by the case, and currently missed on Ts; README, note.)
+  // The target: design.md §2's values through the histogram path within 0.5 %; and the
+  // synthesized-WAV path within its agreement target (decay_metrics_case.cpp: T 2 %, C 0.5 dB, D50 0.02,
+  // Ts 3 %; fixed seeds, so the figure is reproducible).
   const auto r = runCase("decay-metrics", 0);
   EXPECT_LE(r.max_abs_error_rel_peak, 0.005) << r.detail;
-  EXPECT_TRUE(std::isfinite(r.extra.at("wav_worst_error_over_target")));
+  EXPECT_LE(r.extra.at("wav_worst_error_over_target"), 1.0) << r.detail;
+  EXPECT_TRUE(r.passed) << r.detail;
 }
 
 }  // namespace

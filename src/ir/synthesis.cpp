@@ -75,12 +75,24 @@ void checkInputs(const EnergyResponse& r, double fs, double length_s, double vol
   }
 }
 
+/// The first sample of the first histogram bin holding energy in any band (`samples` if none): the
+/// traced part is silent before it. Its zero-phase band filters would otherwise ring ahead of a part that
+/// starts abruptly, up to a sixth of a low band's energy before the first bin in a decay that starts at
+/// once, and the onset would be found milliseconds early (Ts then reads long).
+long tracedStartSample(const EnergyResponse& r, double fs, long samples) {
+  for (int i = 0; i < r.bins(); ++i)
+    for (const auto& band : r.traced)
+      if (band[i] > 0.0) return std::min(samples, static_cast<long>(std::ceil(i * r.bin_s * fs - 1e-9)));  // binSpans
+  return samples;
+}
+
 /// One band's spectrum on that band's bins (BandGains::first on).
 using BandSpectrum = std::vector<std::complex<double>>;
 
 /// The traced part, `samples` long: each band part's spectrum on its band's bins (empty if none).
+/// `quiet`: the leading samples combine() silences (tracedStartSample); the gains match what is left.
 std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, double volume_m3,
-                                      double c, std::uint64_t seed, long samples) {
+                                      double c, std::uint64_t seed, long samples, long quiet) {
   const double fs = filter.sampleRateHz();
   const long n = samples;
   const int bins = static_cast<int>(std::min<double>(r.bins(), std::ceil(static_cast<double>(n) / (fs * r.bin_s))));
@@ -125,6 +137,7 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
         for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) weighted[s] = g[i] * d[s];
       db = bandPass(filter, fft, weighted, k);
       if (it == kGainIterations) break;
+      std::fill(db.begin(), db.begin() + std::min(quiet, n), 0.0);  // silenced in the end (combine)
       for (int i = 0; i < bins; ++i) x[i] = binEnergy(db, spans, i);
       for (int i = 0; i < bins; ++i) {
         if (e[i] == 0.0) continue;
@@ -161,7 +174,7 @@ std::complex<double> innerProduct(const BandSpectrum& u, const BandSpectrum& v) 
 /// or empty), phased within each band so that their energies add: the earliest arrival as it is, the
 /// traced part rotated to be orthogonal to it, every later arrival orthogonal to all before it.
 std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, RealFft& fft,
-                            std::vector<BandSpectrum> traced, long samples, Phasing phasing) {
+                            std::vector<BandSpectrum> traced, long samples, Phasing phasing, long traced_start) {
   const bool orthogonal = phasing == Phasing::Orthogonal;
   const double fs = filter.sampleRateHz();
   const int m = fft.size();
@@ -227,13 +240,20 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
       first = false;
     }
   }
-  std::vector<std::complex<double>> spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
-  for (int b = 0; b < r.bands.size(); ++b) {
-    for (size_t j = 0; j < part[b].size(); ++j) spectrum[gains[b].first + j] += part[b][j];
-    if (static_cast<size_t>(b) < traced.size())
-      for (size_t j = 0; j < traced[b].size(); ++j) spectrum[gains[b].first + j] += traced[b][j];
+  // The arrivals and the traced part go back to time separately: the traced part is silenced before its
+  // first bin (tracedStartSample), the arrivals' pulses are kept whole.
+  const auto toTime = [&](const std::vector<BandSpectrum>& parts) {
+    std::vector<std::complex<double>> spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
+    for (size_t b = 0; b < parts.size(); ++b)
+      for (size_t j = 0; j < parts[b].size(); ++j) spectrum[gains[b].first + j] += parts[b][j];
+    return fft.inverse(spectrum, samples);
+  };
+  std::vector<double> p = toTime(part);
+  if (!traced.empty()) {
+    const std::vector<double> t = toTime(traced);
+    for (long s = std::min(traced_start, samples); s < samples; ++s) p[s] += t[s];
   }
-  return fft.inverse(spectrum, samples);
+  return p;
 }
 
 }  // namespace
@@ -265,9 +285,11 @@ std::vector<double> synthesize(const EnergyResponse& response, double sample_rat
   const long n = core::checkedCount("synthesis: samples", length_s * sample_rate_hz, 1u << 30);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(filter.fftLengthFor(n));
+  const long quiet = tracedStartSample(response, sample_rate_hz, n);
   std::vector<BandSpectrum> traced;
-  if (!response.traced.empty()) traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n);
-  return combine(response, filter, fft, std::move(traced), n, phasing);
+  if (!response.traced.empty())
+    traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n, quiet);
+  return combine(response, filter, fft, std::move(traced), n, phasing, quiet);
 }
 
 }  // namespace diffray::ir

@@ -8,9 +8,9 @@
 //    to float32 as a WAV stores them), mean over 4 seeds, bands 1–8 kHz. A noise-based IR cannot meet
 //    0.5 % (its metrics scatter like a measurement's), so its target is issue 3's synthesis agreement:
 //    T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %. Lower bands are reported in `extra`, not scored.
-//    Since the synthesis was reworked for rooms (narrow crossovers, energy-additive phasing), this path
-//    misses that target on Ts: 3.7 % at T = 0.5 s (1.3 ms, a tenth of the 10 ms ISO 3382-1 JND). The case
-//    reports that as a miss rather than relaxing the target; `detail` says which path missed.
+//    (Before the synthesis silenced the traced part ahead of its first bin, its band filters rang ahead
+//    of this abrupt start, the onset was found ~1 ms early and Ts read 3.7 % long at T = 0.5 s: a miss
+//    this case reported rather than relaxing the target.) `detail` says which path missed, if one does.
 // Rows: x_m = T (s), y_m = band centre (Hz), label "T=… path band metric".
 #include <chrono>
 #include <cmath>

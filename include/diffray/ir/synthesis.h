@@ -16,6 +16,9 @@
 //    to the convergence of the rounds, not to rounding. A bin holding energy in which the Poisson draw put
 //    no Dirac gets one at a uniformly drawn time inside it, so that no energy is lost where the rate is
 //    low (the first milliseconds). Negative bin energies (signed-energy noise) are synthesised as zero.
+//    The traced part is silent before its first bin holding energy (in any band): the zero-phase filters
+//    would ring ahead of an abrupt start (up to a sixth of a low band's energy in a decay that starts at
+//    once), and the onset, time zero of every metric, would be found early. The gains match what is left.
 //  * Arrivals (direct sound, image sources) are placed at their exact delays, fractional ones included:
 //    each is built in the frequency domain as Σ_b A_b·W_b(f)·e^{−2πifτ}·e^{−iφ_b} with A_b chosen so that
 //    band b's part carries exactly the arrival's energy in that band (Parseval). The energy model adds
