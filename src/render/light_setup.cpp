@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "diffray/core/error.h"
+#include "diffray/render/direction_bounds.h"
 #include "diffray/wbsdf/microstructure.h"
 
 namespace diffray::render {
@@ -12,71 +13,93 @@ namespace {
 
 constexpr std::size_t kMaxTableCells = 8'000'000;
 
-// Centre and corners of a rectangle: the points whose directions bound what an occluder sends or receives.
-std::vector<Vec3> rectPoints(const geometry::Frame& f, double hx, double hy) {
-  return {f.origin, f.origin + hx * f.ex + hy * f.ey, f.origin + hx * f.ex - hy * f.ey,
-          f.origin - hx * f.ex + hy * f.ey, f.origin - hx * f.ex - hy * f.ey};
-}
-
 struct ShiftBounds {
   double dx = 0.0, dy = 0.0;  ///< largest change of the direction cosine along ex and along ey
 };
 
-// Δ along the occluder's axes between every incident direction (lights, other occluders, and diffuse
-// rectangles when photons bounce on from them: settings.diffuse_bounces > 0) and every outgoing one (other
-// objects), sampled at the points `here` of the occluder (its centre and corners), plus
-// `deflection` (the direction cosines' change a lens adds at those points, along ex and ey, which the table
-// need not hold: lensShiftBounds).
-ShiftBounds shiftBounds(const LightScene& s, int k, const std::vector<Vec3>& here, double deflection_x = 0.0,
-                        double deflection_y = 0.0) {
-  const OccluderSpec& occ = s.occluders[k];
-  const geometry::Frame& f = occ.frame;
-  std::vector<Vec3> others, senders;  // points of every other object; of those light can come from
+/// A rectangle as the parallelotope of its points: centre and half-side vectors.
+struct Box {
+  Vec3 centre, gx, gy;
+};
+
+// Cells per side of the occluder region over which incident and outgoing directions are bounded together:
+// within a cell the two are bounded separately (exactly, render/direction_bounds.h), which over-counts only
+// by their variation across the cell.
+constexpr int kRegionCells = 8;
+// A lens's opening is sampled at points instead (a grid of this many intervals per side, corners included):
+// there the outgoing direction and the lens's deflection −x/f nearly cancel (for objects near the focal
+// plane), which bounding them separately over a cell would lose; what is left varies with x about linearly,
+// so its extremes lie at the corners.
+constexpr int kLensPoints = 16;
+
+ShiftBounds shiftBounds(const LightScene& s, int k, const Box& region, double focal_m) {
+  const geometry::Frame& f = s.occluders[k].frame;
+  std::vector<Box> others, senders;  // every other object; those light can come from
   for (int i = 0; i < s.targetCount(); ++i) {
     if (i == static_cast<int>(s.rects.size()) + k) continue;
     const LightScene::Target t = s.target(i);
+    const Box box{t.frame->origin, t.half_x_m * t.frame->ex, t.half_y_m * t.frame->ey};
+    others.push_back(box);
     // A diffuse rectangle sends light on only if photons continue after a diffuse bounce.
-    const bool sends = i >= static_cast<int>(s.rects.size()) || s.settings.diffuse_bounces > 0;
-    for (const Vec3& p : rectPoints(*t.frame, t.half_x_m, t.half_y_m)) {
-      others.push_back(p);
-      if (sends) senders.push_back(p);
-    }
-  }
-  std::vector<Vec3> in_dirs, out_dirs;
-  for (const Vec3& h : here) {
-    for (const Light& l : s.lights)
-      if (l.kind == Light::Kind::Point) {
-        if ((h - l.position_m).norm() > 0) in_dirs.push_back((h - l.position_m).normalized());
-      }
-    for (const Light& l : s.lights)  // an area light: its centre and corners, as point lights
-      if (l.kind == Light::Kind::Area)
-        for (const Vec3& p : rectPoints(l.frame, l.half_x_m, l.half_y_m))
-          if ((h - p).norm() > 0) in_dirs.push_back((h - p).normalized());
-    for (const Vec3& p : others)
-      if ((p - h).norm() > 0) out_dirs.push_back((p - h).normalized());
-    for (const Vec3& p : senders)
-      if ((p - h).norm() > 0) in_dirs.push_back((h - p).normalized());
+    if (i >= static_cast<int>(s.rects.size()) || s.settings.diffuse_bounces > 0) senders.push_back(box);
   }
   for (const Light& l : s.lights)
-    if (l.kind == Light::Kind::Collimated) in_dirs.push_back(l.frame.n);
+    if (l.kind == Light::Kind::Area) senders.push_back({l.frame.origin, l.half_x_m * l.frame.ex, l.half_y_m * l.frame.ey});
   ShiftBounds b;
-  for (const Vec3& i : in_dirs)
-    for (const Vec3& o : out_dirs) {
-      b.dx = std::max(b.dx, std::abs(o.dot(f.ex) - i.dot(f.ex) - deflection_x));
-      b.dy = std::max(b.dy, std::abs(o.dot(f.ey) - i.dot(f.ey) - deflection_y));
+  const bool lens = focal_m > 0.0;
+  const int n = lens ? kLensPoints : kRegionCells;
+  const Vec3 cx = lens ? Vec3::Zero() : Vec3(region.gx / n), cy = lens ? Vec3::Zero() : Vec3(region.gy / n);
+  for (int ix = 0; ix < n + (lens ? 1 : 0); ++ix)
+    for (int iy = 0; iy < n + (lens ? 1 : 0); ++iy) {
+      // A cell's centre, or a grid point (lens).
+      const double fx = lens ? 2.0 * ix / n - 1.0 : (2.0 * ix + 1.0) / n - 1.0;
+      const double fy = lens ? 2.0 * iy / n - 1.0 : (2.0 * iy + 1.0) / n - 1.0;
+      const Vec3 h = region.centre + fx * region.gx + fy * region.gy;
+      CosineRange out_x, out_y, in_x, in_y;
+      const auto join = [](CosineRange& into, const CosineRange& r) {
+        if (!r.empty()) into.add(r.lo), into.add(r.hi);
+      };
+      for (const Box& o : others) {  // p − h, p on the object, h in the cell
+        const std::vector<Vec3> g{o.gx, o.gy, cx, cy};
+        join(out_x, cosineRange(o.centre - h, g, f.ex));
+        join(out_y, cosineRange(o.centre - h, g, f.ey));
+      }
+      for (const Box& src : senders) {  // h − p, p on the sender
+        const std::vector<Vec3> g{src.gx, src.gy, cx, cy};
+        join(in_x, cosineRange(h - src.centre, g, f.ex));
+        join(in_y, cosineRange(h - src.centre, g, f.ey));
+      }
+      for (const Light& l : s.lights) {
+        if (l.kind == Light::Kind::Point) {
+          join(in_x, cosineRange(h - l.position_m, {cx, cy}, f.ex));
+          join(in_y, cosineRange(h - l.position_m, {cx, cy}, f.ey));
+        } else if (l.kind == Light::Kind::Collimated) {
+          in_x.add(l.frame.n.dot(f.ex));
+          in_y.add(l.frame.n.dot(f.ey));
+        }
+      }
+      if (out_x.empty() || in_x.empty()) continue;
+      // The lens's deflection over the cell: −r/f for r the offset from the lens centre along each axis.
+      // The lens's deflection at the point: d = −r/f, r the offset from the lens centre along each axis.
+      const Vec3 r = h - f.origin;
+      const double ax = lens ? r.dot(f.ex) / focal_m : 0.0, ay = lens ? r.dot(f.ey) / focal_m : 0.0;
+      // max |o − i − d| with d = −a: the larger of o_hi − i_lo + a and i_hi − a − o_lo.
+      b.dx = std::max({b.dx, out_x.hi - in_x.lo + ax, in_x.hi - ax - out_x.lo});
+      b.dy = std::max({b.dy, out_y.hi - in_y.lo + ay, in_y.hi - ay - out_y.lo});
     }
   return b;
 }
 
+// The plate's own bound: every point of it can pass light (t = 0 only absorbs).
 ShiftBounds shiftBounds(const LightScene& s, int k) {
   const OccluderSpec& occ = s.occluders[k];
-  return shiftBounds(s, k, rectPoints(occ.frame, occ.half_x_m, occ.half_y_m));
+  return shiftBounds(s, k, {occ.frame.origin, occ.half_x_m * occ.frame.ex, occ.half_y_m * occ.frame.ey}, 0.0);
 }
 
 // A lens leaves a ray at α_o = α_i + λu' − x/f (transport::Occluder::focal_length_m): the table draws only
 // u', the diffraction around the geometric ray, so its range is the largest |α_o − α_i + x/f| (and along y)
 // that reaches an object, at each point of the opening (t = 0 elsewhere, so the plate's corners need no
-// shift) with that point's own deflection. The plain bound (plate corners, no deflection) would be wrong
+// shift) with that point's own deflection. The plain bound (whole plate, no deflection) would be wrong
 // both ways: it misses the shifts a ray needs where −x/f and α_o − α_i differ in sign (a strong lens, f well
 // below the distances to the objects: a focal spot partly outside the table), and it counts the geometric
 // spread of the whole plate, which the lens undoes (rays from every x meet at the focus), so it is wider
@@ -86,15 +109,8 @@ ShiftBounds shiftBounds(const LightScene& s, int k) {
 ShiftBounds lensShiftBounds(const LightScene& s, int k) {
   const OccluderSpec& occ = s.occluders[k];
   const geometry::Frame& f = occ.frame;
-  ShiftBounds b;
-  for (const Vec3& h : rectPoints(f, 0.5 * occ.aperture_width_m, 0.5 * occ.aperture_height_m)) {
-    const Vec3 r = h - f.origin;
-    const ShiftBounds at =
-        shiftBounds(s, k, {h}, -r.dot(f.ex) / occ.focal_length_m, -r.dot(f.ey) / occ.focal_length_m);
-    b.dx = std::max(b.dx, at.dx);
-    b.dy = std::max(b.dy, at.dy);
-  }
-  return b;
+  return shiftBounds(s, k, {f.origin, 0.5 * occ.aperture_width_m * f.ex, 0.5 * occ.aperture_height_m * f.ey},
+                     occ.focal_length_m);
 }
 
 }  // namespace

@@ -9,7 +9,9 @@
 // metre does not depend on λ, only where a shift sends the ray does). Per axis:
 //  - shift range |u'| ≤ 1.02·Δ/λ_min, Δ the largest change of the direction cosine along that axis between
 //    any incident direction (from the lights and the other objects) and any outgoing one (to the other
-//    objects), capped at 2/λ_min (every propagating shift). Shifts beyond it would reach no object.
+//    objects), capped at 2/λ_min (every propagating shift). Shifts beyond it would reach no object. Each
+//    object's directions are bounded exactly over its whole rectangle (render/direction_bounds.h; corners
+//    alone miss the middle of an edge), over 8 × 8 cells of the occluder.
 //    A lens: Δ is taken with its geometric deflection −x/f, −y/f out, over the points of its opening (the
 //    table holds only the diffraction around the geometric ray; light_setup.cpp, lensShiftBounds).
 //  - du: a u-cell moves a landing point by up to λ_max·z·du (z the throw from the occluder to a diffuse
