@@ -38,26 +38,63 @@ struct Validator {
     return -1;
   }
 
+  // A reflecting triangle of mirror plane `plane` holding point p (within `tol` of it), or −1.
+  int triangleOn(int plane, const Vec3& p, double tol) const {
+    for (int tri : geometry.planes()[plane].triangles) {
+      if (opening[geometry.triangle(tri).material] && !(blocking && (*blocking)[tri])) continue;  // no mirror
+      const auto& t = room.mesh.triangles[tri];
+      const Vec3 &a = room.mesh.vertices[t[0]], &b = room.mesh.vertices[t[1]], &c = room.mesh.vertices[t[2]];
+      // p's barycentric coordinates in the triangle's plane; inside up to tol over the triangle's size.
+      const Vec3 e1 = b - a, e2 = c - a, q = p - a;
+      const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), q1 = q.dot(e1), q2 = q.dot(e2);
+      const double det = d11 * d22 - d12 * d12;
+      if (!(det > 0.0)) continue;
+      const double u = (d22 * q1 - d12 * q2) / det, v = (d11 * q2 - d12 * q1) / det;
+      const double slack = tol / std::sqrt(std::max(d11, d22));
+      if (u >= -slack && v >= -slack && u + v <= 1.0 + slack) return tri;
+    }
+    return -1;
+  }
+
   // Traces the candidate back from the listener; on success fills the reflection points' triangles.
+  // A reflection point on an edge between two mirror planes (the path meets both at once: in a box, at a
+  // listener whose line to the image passes through a room edge) is accepted for each plane: the path is
+  // the limit of the valid paths on either side of the edge, which the rays leave to the image sources
+  // too. Its two plane orders give the same image; imageSources() keeps one.
   bool validate(const Vec3& source, const Vec3& listener, const std::vector<int>& planes,
                 const std::vector<Vec3>& images, std::vector<int>& triangles, Vec3& first_leg_dir) const {
     const double tol = 1e-6 * geometry.extent();
     Vec3 x = listener;
     triangles.assign(planes.size(), -1);
+    std::vector<int> here;  // the planes reflected at x so far: each once (A, B, A at one edge point is A∘B∘A = B)
     for (int k = static_cast<int>(planes.size()) - 1; k >= 0; --k) {
       const MirrorPlane& pl = geometry.planes()[planes[k]];
       const Vec3 to_image = images[k] - x;
       const double denom = pl.normal.dot(to_image);
       if (std::abs(denom) < 1e-300) return false;
       const double s = (pl.offset - pl.normal.dot(x)) / denom;  // crossing at x + s·to_image
-      if (!(s > 0.0 && s < 1.0)) return false;
       const double len = to_image.norm();
+      if (!(s * len > -tol && s < 1.0)) return false;
+      if (s * len <= tol) {  // x, the previous reflection point, is on this plane too: an edge
+        if (std::find(here.begin(), here.end(), planes[k]) != here.end()) return false;
+        const int tri = triangleOn(planes[k], x, tol);
+        if (tri < 0) return false;
+        triangles[k] = tri;
+        here.push_back(planes[k]);
+        continue;
+      }
       const Vec3 dir = to_image / len;
       double t;
-      const int tri = firstSurface(x, dir, 1e300, t);
-      if (tri < 0 || geometry.triangle(tri).plane != planes[k] || std::abs(t - s * len) > tol) return false;
+      const int hit = firstSurface(x, dir, s * len + tol, t);
+      if (hit >= 0 && t < s * len - tol) return false;  // blocked before the plane
+      // Usually the surface hit is this plane's. At an edge it may be a neighbour's at the same point, or
+      // the float ray may slip between the two: then the crossing point decides.
+      const int tri = hit >= 0 && geometry.triangle(hit).plane == planes[k] ? hit
+                                                                            : triangleOn(planes[k], x + s * to_image, tol);
+      if (tri < 0) return false;
       triangles[k] = tri;
       x += s * to_image;
+      here.assign(1, planes[k]);
     }
     const Vec3 to_source = source - x;
     const double dist = to_source.norm();
@@ -100,6 +137,8 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
   const double max_d = options.length_s * options.speed_of_sound_m_s;
   const int nb = room.bands.size();
   std::vector<ir::Arrival> out;
+  std::vector<Vec3> out_images;              // each arrival's image
+  std::vector<std::vector<int>> out_planes;  // and its planes, sorted
   std::vector<int> planes, triangles;
   std::vector<Vec3> images;
 
@@ -122,6 +161,9 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
       a.energy[b] = e;
     }
     out.push_back(a);
+    out_images.push_back(img);
+    out_planes.push_back(planes);
+    std::sort(out_planes.back().begin(), out_planes.back().end());
   };
   // Depth-first over plane sequences up to max_order. A child's valid path is at least as long as its
   // parent image's distance to the listener (unfold the last leg: |I − R| + |R − L| ≥ |I − L|, triangle
@@ -143,8 +185,26 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
     }
   };
   recurse(recurse, 0);
-  std::sort(out.begin(), out.end(), [](const ir::Arrival& a, const ir::Arrival& b) { return a.delay_s < b.delay_s; });
-  return out;
+  // By delay; and the same image by the same planes in another order (two planes at right angles, the path
+  // through their edge: Validator::validate) is one path, counted once. Such twins have equal delays.
+  std::vector<std::size_t> order(out.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return out[a].delay_s < out[b].delay_s; });
+  const double same_m = 1e-9 * geometry.extent();
+  std::vector<ir::Arrival> kept;
+  std::vector<std::size_t> kept_index;
+  for (std::size_t i : order) {
+    bool twin = false;
+    for (std::size_t j = kept.size(); j-- > 0;) {
+      if ((out[i].delay_s - kept[j].delay_s) * options.speed_of_sound_m_s > same_m) break;
+      const std::size_t o = kept_index[j];
+      twin = twin || (out_planes[o] == out_planes[i] && (out_images[o] - out_images[i]).norm() <= same_m);
+    }
+    if (twin) continue;
+    kept.push_back(out[i]);
+    kept_index.push_back(i);
+  }
+  return kept;
 }
 
 }  // namespace diffray::transport
