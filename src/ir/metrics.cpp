@@ -93,7 +93,8 @@ struct Truncation {
 //  5. new intervals, 5 per 10 dB of decay; 6. the noise from 5 dB of decay past the crosspoint (at
 //  least the last 10 %); 7. the late decay: a line from 25 to 5 dB above the noise; 8. a new crosspoint;
 //  repeat 5–8 until it moves by less than an interval (at most 10 times). The integral stops at the
-//  crosspoint and the line's exponential continuation (energy P(t_c)/k) stands in for what lies beyond.
+//  crosspoint (at the end, if the response ends first) and the line's exponential continuation (energy
+//  P(t_c)/k) stands in for what lies beyond.
 // A response whose last 10 % holds no energy has no noise: it is used whole.
 Truncation lundeby(const std::vector<double>& e, double bin_s) {
   const long n = static_cast<long>(e.size());
@@ -128,7 +129,12 @@ Truncation lundeby(const std::vector<double>& e, double bin_s) {
     tc = tc_new;
     if (settled) break;
   }
-  if (!(tc > 0.0) || tc >= t_end) return none;
+  if (!(tc > 0.0)) return none;
+  // A response that ends before its decay meets the noise (cut short, with little or no noise): the
+  // integral stops at the end and the late line's continuation stands in for the rest, as past a
+  // crosspoint. Without it the Schroeder curve plunges at the cut: T30 read up to 18 % short, and the
+  // decay range counted the plunge (90 dB from a 1 s cut of a 2 s decay).
+  tc = std::min(tc, t_end);
   Truncation tr;
   tr.bins = std::max(1L, static_cast<long>(tc / bin_s));
   tr.tail_rate = -line.slope * std::log(10.0) / 10.0;
