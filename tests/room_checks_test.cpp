@@ -153,4 +153,15 @@ TEST(RoomChecks, WarningsForSourcesAndListeners) {
   EXPECT_NE(w[1].find("source out at (5, 1, 1) is outside the room"), std::string::npos) << w[1];
   EXPECT_NE(w[2].find("listener cut"), std::string::npos) << w[2];
   EXPECT_NE(w[2].find("cut by a surface 0.05 m from its centre"), std::string::npos) << w[2];
+  // A source inside a listener's sphere (radius 0.1 m by default) is named; at its centre, the direct
+  // sound is left out.
+  l.name = "on-source";
+  l.position_m = {2, 1, 1};
+  room.listeners.push_back(l);
+  const auto w2 = dr::roomWarnings(room);
+  ASSERT_EQ(w2.size(), 4u);
+  EXPECT_NE(w2[3].find("listener on-source"), std::string::npos) << w2[3];
+  EXPECT_NE(w2[3].find("source S1 lies inside its sphere, 0 m from the centre: the direct sound is left out"),
+            std::string::npos)
+      << w2[3];
 }

@@ -143,6 +143,15 @@ std::vector<std::string> roomWarnings(const Room& room) {
     if (d < l.radius_m)
       w.push_back(what + ": its sphere (radius " + formatNumber(l.radius_m) + " m) is cut by a surface " +
                   formatNumber(std::round(d * 1e4) / 1e4) + " m from its centre");
+    // The direct sound is the image-source value P/d² at the centre: it grows without bound as the source
+    // nears the centre, and at the centre itself there is none (the rays leave it to the image sources).
+    for (const Source& s : room.sources) {
+      const double r = (s.position_m - l.position_m).norm();
+      if (r < l.radius_m)
+        w.push_back(what + ": source " + s.name + " lies inside its sphere, " + formatNumber(std::round(r * 1e4) / 1e4) +
+                    " m from the centre" + (r > 0.0 ? " (the direct sound is P/d² there)" : ": the direct sound is left out") +
+                    "; move them apart");
+    }
   }
   return w;
 }
