@@ -139,6 +139,10 @@ struct Tracer {
   const RoomTraceOptions& opt;
   MaterialTable materials;
   std::vector<receiver::Sphere> spheres;
+  struct ListenerBound {
+    double x, y, z, r2_plus_margin;  ///< a sphere's centre and r² plus score's margin (m, m²)
+  };
+  std::vector<ListenerBound> listener_bounds;
   int bands = 0, bins = 0;
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
@@ -150,9 +154,25 @@ struct Tracer {
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
   // listeners whose score next-event estimation took (bit l of `skip_listeners`).
+  // NB: the band count when known at compile time (the loops over bands unroll and vectorise), else 0.
+  template <int NB>
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
              const core::BandArray& energy, bool skip, std::uint64_t skip_listeners = 0) const {
-    for (std::size_t l = 0; l < spheres.size(); ++l) {
+    const int nb = NB > 0 ? NB : bands;
+    // Most segments miss every listener: first a branchless test over all of them (the squared distance
+    // from each centre to the segment, minus r², minus a margin so that it never rejects a segment
+    // chordSpan would accept), then one well-predicted branch; chordSpan only when some sphere is near.
+    const std::size_t n = spheres.size();
+    double closest = 1.0;
+    for (std::size_t l = 0; l < n; ++l) {
+      const ListenerBound& lb = listener_bounds[l];
+      const double ox = pos.x() - lb.x, oy = pos.y() - lb.y, oz = pos.z() - lb.z;
+      const double b = ox * dir.x() + oy * dir.y() + oz * dir.z();
+      const double tc = std::min(std::max(-b, 0.0), t_end);  // the segment's point nearest the centre
+      closest = std::min(closest, ox * ox + oy * oy + oz * oz + tc * (2.0 * b + tc) - lb.r2_plus_margin);
+    }
+    if (!(closest < 0.0)) return;
+    for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
       if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
       ++acc.crossings[l];
@@ -166,8 +186,8 @@ struct Tracer {
       // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
       // error below 2e-8, no exp per band in the hot loop.
       const double ds = s_mid - air_centre_m[bin];
-      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(bands)];
-      for (int b = 0; b < bands; ++b) {
+      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
+      for (int b = 0; b < nb; ++b) {
         const double x = opt.air_m_per_m[b] * ds;
         acc.listeners[l].add(b, bin, energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w);
       }
@@ -247,7 +267,9 @@ struct Tracer {
       s.has_qmc = true;
       std::copy(qmc, qmc + 3, s.qmc);
     }
-    follow(acc, rng, s);
+    // Octave bands (8, every shipped room) get the hot loop with a fixed band count.
+    if (bands == 8) follow<8>(acc, rng, s);
+    else follow<0>(acc, rng, s);
   }
 
   // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
@@ -372,7 +394,9 @@ struct Tracer {
 
   // Follows a path until it ends. The hot state lives in locals (not in the Path, which the occluder code
   // takes by reference and would make every store in the loop a possible alias): 5 % of the room bench.
+  template <int NB>
   void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+    const int nb = NB > 0 ? NB : bands;
     Vec3 pos = s.pos, dir = s.dir;
     core::BandArray e = s.e;
     double path_m = s.path_m;
@@ -409,7 +433,7 @@ struct Tracer {
       }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
-      score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
+      score<NB>(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
       skip_next = 0;
       if (opt.in_flight) addInFlight(acc, path_m, t_end, e);
       if (!hit.valid()) {
@@ -437,7 +461,7 @@ struct Tracer {
           s.pos = pos, s.dir = dir, s.e = e, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
           if (s.band < 0) chooseBand(rng, s);
           if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-          if (!roulette(acc, rng, s.e, s.e_start)) return;
+          if (!roulette<NB>(acc, rng, s.e, s.e_start)) return;
           pos = s.pos, dir = s.dir, e = s.e, order = s.order, specular_chain = s.specular_chain;
           skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
           continue;
@@ -456,24 +480,24 @@ struct Tracer {
         const double p_diffuse = materials.p_diffuse[m];
         if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
           const core::BandArray& w = materials.w_diffuse[m];
-          for (int b = 0; b < bands; ++b) e[b] *= w[b];
+          for (int b = 0; b < nb; ++b) e[b] *= w[b];
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
           specular_chain = false;
         } else {
           const core::BandArray& w = materials.w_specular[m];
-          for (int b = 0; b < bands; ++b) e[b] *= w[b];
+          for (int b = 0; b < nb; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
           if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
         const core::BandArray& w = materials.w_transmit[m];
-        for (int b = 0; b < bands; ++b) e[b] *= w[b];
+        for (int b = 0; b < nb; ++b) e[b] *= w[b];
         specular_chain = false;
         pos -= eps_m * n_in;
       }
-      if (!roulette(acc, rng, e, s.e_start)) return;
+      if (!roulette<NB>(acc, rng, e, s.e_start)) return;
     }
   }
 
@@ -481,9 +505,11 @@ struct Tracer {
   // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
   // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
   // level, so rays live a little longer at high frequencies, and no exp per bounce.
+  template <int NB>
   bool roulette(RoomTraceResult& acc, core::FastRng& rng, core::BandArray& e, double e_start) const {
+    const int nb = NB > 0 ? NB : bands;
     double level = 0.0;
-    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
+    for (int b = 0; b < nb; ++b) level = std::max(level, std::abs(e[b]));
     const double threshold = opt.roulette_level * e_start;
     if (level >= threshold) return true;
     const double q = level / threshold;
@@ -491,7 +517,7 @@ struct Tracer {
       ++acc.roulette_killed;
       return false;
     }
-    for (int b = 0; b < bands; ++b) e[b] /= q;
+    for (int b = 0; b < nb; ++b) e[b] /= q;
     return true;
   }
 };
@@ -505,8 +531,13 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
-  for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
+  for (const room::Listener& l : room.listeners) {
+    tr.spheres.push_back({l.position_m, l.radius_m});
+    // The margin: far above the rounding of the squared distance (terms up to extent², relative 1e-16).
+    const double r2 = l.radius_m * l.radius_m, margin = 1e-9 * (geometry.extent() * geometry.extent() + r2);
+    tr.listener_bounds.push_back({l.position_m.x(), l.position_m.y(), l.position_m.z(), r2 + margin});
+  }
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
