@@ -140,7 +140,9 @@ struct Tracer {
   MaterialTable materials;
   std::vector<receiver::Sphere> spheres;
   struct ListenerBound {
-    double x, y, z, r2_plus_margin;  ///< a sphere's centre and r² plus score's margin (m, m²)
+    double x, y, z;         ///< a sphere's centre (m)
+    double r_slack;         ///< its radius plus a margin (m)
+    double r2_plus_margin;  ///< r² plus a margin (m²)
   };
   std::vector<ListenerBound> listener_bounds;
   int bands = 0, bins = 0;
@@ -159,17 +161,20 @@ struct Tracer {
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
              const core::BandArray& energy, bool skip, std::uint64_t skip_listeners = 0) const {
     const int nb = NB > 0 ? NB : bands;
-    // Most segments miss every listener: first a branchless test over all of them (the squared distance
-    // from each centre to the segment, minus r², minus a margin so that it never rejects a segment
-    // chordSpan would accept), then one well-predicted branch; chordSpan only when some sphere is near.
+    // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
+    // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
+    // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
+    // the three signed excesses is then negative (each with a margin above its rounding, so that the test
+    // never rejects a segment chordSpan would accept).
     const std::size_t n = spheres.size();
     double closest = 1.0;
     for (std::size_t l = 0; l < n; ++l) {
       const ListenerBound& lb = listener_bounds[l];
       const double ox = pos.x() - lb.x, oy = pos.y() - lb.y, oz = pos.z() - lb.z;
       const double b = ox * dir.x() + oy * dir.y() + oz * dir.z();
-      const double tc = std::min(std::max(-b, 0.0), t_end);  // the segment's point nearest the centre
-      closest = std::min(closest, ox * ox + oy * oy + oz * oz + tc * (2.0 * b + tc) - lb.r2_plus_margin);
+      const double off_line = ox * ox + oy * oy + oz * oz - b * b - lb.r2_plus_margin;
+      const double outside = std::max(b - lb.r_slack, -b - t_end - lb.r_slack);
+      closest = std::min(closest, std::max(off_line, outside));
     }
     if (!(closest < 0.0)) return;
     for (std::size_t l = 0; l < n; ++l) {
@@ -509,7 +514,13 @@ struct Tracer {
   bool roulette(RoomTraceResult& acc, core::FastRng& rng, core::BandArray& e, double e_start) const {
     const int nb = NB > 0 ? NB : bands;
     double level = 0.0;
-    for (int b = 0; b < nb; ++b) level = std::max(level, std::abs(e[b]));
+    if constexpr (NB == 8) {  // a pairwise tree (the same maximum): half of it runs two bands at once
+      double m[4];
+      for (int b = 0; b < 4; ++b) m[b] = std::max(std::abs(e[b]), std::abs(e[b + 4]));
+      level = std::max(std::max(m[0], m[2]), std::max(m[1], m[3]));
+    } else {
+      for (int b = 0; b < nb; ++b) level = std::max(level, std::abs(e[b]));
+    }
     const double threshold = opt.roulette_level * e_start;
     if (level >= threshold) return true;
     const double q = level / threshold;
@@ -534,9 +545,11 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
   for (const room::Listener& l : room.listeners) {
     tr.spheres.push_back({l.position_m, l.radius_m});
-    // The margin: far above the rounding of the squared distance (terms up to extent², relative 1e-16).
-    const double r2 = l.radius_m * l.radius_m, margin = 1e-9 * (geometry.extent() * geometry.extent() + r2);
-    tr.listener_bounds.push_back({l.position_m.x(), l.position_m.y(), l.position_m.z(), r2 + margin});
+    // The margins: far above the rounding of the squared distance (terms up to extent², relative 1e-16)
+    // and of the projection (terms up to extent).
+    const double r = l.radius_m, e = geometry.extent();
+    tr.listener_bounds.push_back({l.position_m.x(), l.position_m.y(), l.position_m.z(), r + 1e-9 * (e + r),
+                                  r * r + 1e-9 * (e * e + r * r)});
   }
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
