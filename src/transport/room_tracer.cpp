@@ -121,6 +121,9 @@ Vec3 sampleLambert(const Vec3& n, double u1, double u2) {
   return r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
 }
 
+// Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
+using Pair = double __attribute__((vector_size(16)));
+
 // Entry and exit distances of the segment [0, t_end) through a sphere, or false if it misses.
 bool chordSpan(const receiver::Sphere& s, const Vec3& o, const Vec3& d, double t_end, double& t_in, double& t_out) {
   const Vec3 oc = o - s.centre;
@@ -139,12 +142,13 @@ struct Tracer {
   const RoomTraceOptions& opt;
   MaterialTable materials;
   std::vector<receiver::Sphere> spheres;
-  struct ListenerBound {
-    double x, y, z;         ///< a sphere's centre (m)
-    double r_slack;         ///< its radius plus a margin (m)
-    double r2_plus_margin;  ///< r² plus a margin (m²)
+  /// Two listener spheres for score's pre-test, one per lane (an unused lane: a sphere no segment nears).
+  struct ListenerPair {
+    Pair x, y, z;         ///< centres (m)
+    Pair r_slack;         ///< radii plus a margin (m)
+    Pair r2_plus_margin;  ///< r² plus a margin (m²)
   };
-  std::vector<ListenerBound> listener_bounds;
+  std::vector<ListenerPair> listener_pairs;
   int bands = 0, bins = 0;
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
@@ -165,18 +169,21 @@ struct Tracer {
     // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
     // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
     // the three signed excesses is then negative (each with a margin above its rounding, so that the test
-    // never rejects a segment chordSpan would accept).
+    // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
     const std::size_t n = spheres.size();
-    double closest = 1.0;
-    for (std::size_t l = 0; l < n; ++l) {
-      const ListenerBound& lb = listener_bounds[l];
-      const double ox = pos.x() - lb.x, oy = pos.y() - lb.y, oz = pos.z() - lb.z;
-      const double b = ox * dir.x() + oy * dir.y() + oz * dir.z();
-      const double off_line = ox * ox + oy * oy + oz * oz - b * b - lb.r2_plus_margin;
-      const double outside = std::max(b - lb.r_slack, -b - t_end - lb.r_slack);
-      closest = std::min(closest, std::max(off_line, outside));
+    const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
+    const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
+    Pair closest = {1.0, 1.0};
+    for (const ListenerPair& lp : listener_pairs) {
+      const Pair ox = px - lp.x, oy = py - lp.y, oz = pz - lp.z;
+      const Pair b = ox * dx + oy * dy + oz * dz;
+      const Pair off_line = ox * ox + oy * oy + oz * oz - b * b - lp.r2_plus_margin;
+      const Pair behind = b - lp.r_slack, beyond = -b - te - lp.r_slack;
+      const Pair outside = behind > beyond ? behind : beyond;
+      const Pair excess = off_line > outside ? off_line : outside;
+      closest = excess < closest ? excess : closest;
     }
-    if (!(closest < 0.0)) return;
+    if (!(closest[0] < 0.0 || closest[1] < 0.0)) return;
     for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
       if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
@@ -548,8 +555,17 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     // The margins: far above the rounding of the squared distance (terms up to extent², relative 1e-16)
     // and of the projection (terms up to extent).
     const double r = l.radius_m, e = geometry.extent();
-    tr.listener_bounds.push_back({l.position_m.x(), l.position_m.y(), l.position_m.z(), r + 1e-9 * (e + r),
-                                  r * r + 1e-9 * (e * e + r * r)});
+    const int lane = static_cast<int>((tr.spheres.size() - 1) % 2);
+    if (lane == 0) {
+      Tracer::ListenerPair empty;
+      empty.x = empty.y = empty.z = Pair{0.0, 0.0};
+      empty.r_slack = empty.r2_plus_margin = Pair{-1e300, -1e300};
+      tr.listener_pairs.push_back(empty);
+    }
+    Tracer::ListenerPair& lp = tr.listener_pairs.back();
+    lp.x[lane] = l.position_m.x(), lp.y[lane] = l.position_m.y(), lp.z[lane] = l.position_m.z();
+    lp.r_slack[lane] = r + 1e-9 * (e + r);
+    lp.r2_plus_margin[lane] = r * r + 1e-9 * (e * e + r * r);
   }
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
