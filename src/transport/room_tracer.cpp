@@ -121,6 +121,9 @@ Vec3 sampleLambert(const Vec3& n, double u1, double u2) {
   return r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
 }
 
+// Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
+using Pair = double __attribute__((vector_size(16)));
+
 // Entry and exit distances of the segment [0, t_end) through a sphere, or false if it misses.
 bool chordSpan(const receiver::Sphere& s, const Vec3& o, const Vec3& d, double t_end, double& t_in, double& t_out) {
   const Vec3 oc = o - s.centre;
@@ -139,6 +142,13 @@ struct Tracer {
   const RoomTraceOptions& opt;
   MaterialTable materials;
   std::vector<receiver::Sphere> spheres;
+  /// Two listener spheres for score's pre-test, one per lane (an unused lane: a sphere no segment nears).
+  struct ListenerPair {
+    Pair x, y, z;         ///< centres (m)
+    Pair r_slack;         ///< radii plus a margin (m)
+    Pair r2_plus_margin;  ///< r² plus a margin (m²)
+  };
+  std::vector<ListenerPair> listener_pairs;
   int bands = 0, bins = 0;
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
@@ -150,9 +160,31 @@ struct Tracer {
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
   // listeners whose score next-event estimation took (bit l of `skip_listeners`).
+  // NB: the band count when known at compile time (the loops over bands unroll and vectorise), else 0.
+  template <int NB>
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
              const core::BandArray& energy, bool skip, std::uint64_t skip_listeners = 0) const {
-    for (std::size_t l = 0; l < spheres.size(); ++l) {
+    const int nb = NB > 0 ? NB : bands;
+    // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
+    // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
+    // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
+    // the three signed excesses is then negative (each with a margin above its rounding, so that the test
+    // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
+    const std::size_t n = spheres.size();
+    const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
+    const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
+    Pair closest = {1.0, 1.0};
+    for (const ListenerPair& lp : listener_pairs) {
+      const Pair ox = px - lp.x, oy = py - lp.y, oz = pz - lp.z;
+      const Pair b = ox * dx + oy * dy + oz * dz;
+      const Pair off_line = ox * ox + oy * oy + oz * oz - b * b - lp.r2_plus_margin;
+      const Pair behind = b - lp.r_slack, beyond = -b - te - lp.r_slack;
+      const Pair outside = behind > beyond ? behind : beyond;
+      const Pair excess = off_line > outside ? off_line : outside;
+      closest = excess < closest ? excess : closest;
+    }
+    if (!(closest[0] < 0.0 || closest[1] < 0.0)) return;
+    for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
       if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
       ++acc.crossings[l];
@@ -166,8 +198,8 @@ struct Tracer {
       // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
       // error below 2e-8, no exp per band in the hot loop.
       const double ds = s_mid - air_centre_m[bin];
-      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(bands)];
-      for (int b = 0; b < bands; ++b) {
+      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
+      for (int b = 0; b < nb; ++b) {
         const double x = opt.air_m_per_m[b] * ds;
         acc.listeners[l].add(b, bin, energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w);
       }
@@ -247,7 +279,9 @@ struct Tracer {
       s.has_qmc = true;
       std::copy(qmc, qmc + 3, s.qmc);
     }
-    follow(acc, rng, s);
+    // Octave bands (8, every shipped room) get the hot loop with a fixed band count.
+    if (bands == 8) follow<8>(acc, rng, s);
+    else follow<0>(acc, rng, s);
   }
 
   // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
@@ -372,7 +406,9 @@ struct Tracer {
 
   // Follows a path until it ends. The hot state lives in locals (not in the Path, which the occluder code
   // takes by reference and would make every store in the loop a possible alias): 5 % of the room bench.
+  template <int NB>
   void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+    const int nb = NB > 0 ? NB : bands;
     Vec3 pos = s.pos, dir = s.dir;
     core::BandArray e = s.e;
     double path_m = s.path_m;
@@ -409,7 +445,7 @@ struct Tracer {
       }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
-      score(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
+      score<NB>(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
       skip_next = 0;
       if (opt.in_flight) addInFlight(acc, path_m, t_end, e);
       if (!hit.valid()) {
@@ -437,7 +473,7 @@ struct Tracer {
           s.pos = pos, s.dir = dir, s.e = e, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
           if (s.band < 0) chooseBand(rng, s);
           if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-          if (!roulette(acc, rng, s.e, s.e_start)) return;
+          if (!roulette<NB>(acc, rng, s.e, s.e_start)) return;
           pos = s.pos, dir = s.dir, e = s.e, order = s.order, specular_chain = s.specular_chain;
           skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
           continue;
@@ -456,24 +492,24 @@ struct Tracer {
         const double p_diffuse = materials.p_diffuse[m];
         if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
           const core::BandArray& w = materials.w_diffuse[m];
-          for (int b = 0; b < bands; ++b) e[b] *= w[b];
+          for (int b = 0; b < nb; ++b) e[b] *= w[b];
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
           specular_chain = false;
         } else {
           const core::BandArray& w = materials.w_specular[m];
-          for (int b = 0; b < bands; ++b) e[b] *= w[b];
+          for (int b = 0; b < nb; ++b) e[b] *= w[b];
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
           if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
         const core::BandArray& w = materials.w_transmit[m];
-        for (int b = 0; b < bands; ++b) e[b] *= w[b];
+        for (int b = 0; b < nb; ++b) e[b] *= w[b];
         specular_chain = false;
         pos -= eps_m * n_in;
       }
-      if (!roulette(acc, rng, e, s.e_start)) return;
+      if (!roulette<NB>(acc, rng, e, s.e_start)) return;
     }
   }
 
@@ -481,9 +517,17 @@ struct Tracer {
   // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
   // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
   // level, so rays live a little longer at high frequencies, and no exp per bounce.
+  template <int NB>
   bool roulette(RoomTraceResult& acc, core::FastRng& rng, core::BandArray& e, double e_start) const {
+    const int nb = NB > 0 ? NB : bands;
     double level = 0.0;
-    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
+    if constexpr (NB == 8) {  // a pairwise tree (the same maximum): half of it runs two bands at once
+      double m[4];
+      for (int b = 0; b < 4; ++b) m[b] = std::max(std::abs(e[b]), std::abs(e[b + 4]));
+      level = std::max(std::max(m[0], m[2]), std::max(m[1], m[3]));
+    } else {
+      for (int b = 0; b < nb; ++b) level = std::max(level, std::abs(e[b]));
+    }
     const double threshold = opt.roulette_level * e_start;
     if (level >= threshold) return true;
     const double q = level / threshold;
@@ -491,7 +535,7 @@ struct Tracer {
       ++acc.roulette_killed;
       return false;
     }
-    for (int b = 0; b < bands; ++b) e[b] /= q;
+    for (int b = 0; b < nb; ++b) e[b] /= q;
     return true;
   }
 };
@@ -505,8 +549,24 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
-  for (const room::Listener& l : room.listeners) tr.spheres.push_back({l.position_m, l.radius_m});
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
+  for (const room::Listener& l : room.listeners) {
+    tr.spheres.push_back({l.position_m, l.radius_m});
+    // The margins: far above the rounding of the squared distance (terms up to extent², relative 1e-16)
+    // and of the projection (terms up to extent).
+    const double r = l.radius_m, e = geometry.extent();
+    const int lane = static_cast<int>((tr.spheres.size() - 1) % 2);
+    if (lane == 0) {
+      Tracer::ListenerPair empty;
+      empty.x = empty.y = empty.z = Pair{0.0, 0.0};
+      empty.r_slack = empty.r2_plus_margin = Pair{-1e300, -1e300};
+      tr.listener_pairs.push_back(empty);
+    }
+    Tracer::ListenerPair& lp = tr.listener_pairs.back();
+    lp.x[lane] = l.position_m.x(), lp.y[lane] = l.position_m.y(), lp.z[lane] = l.position_m.z();
+    lp.r_slack[lane] = r + 1e-9 * (e + r);
+    lp.r2_plus_margin[lane] = r * r + 1e-9 * (e * e + r * r);
+  }
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
