@@ -370,6 +370,7 @@ printf '{%s, "lights": [{"type": "laser", "position": [0,0,0.5], "direction": [0
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}], "colour": 1}\n' "$light" >"$tmp/key.json"
 printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5], "power_w": -1}]}\n' "$light" >"$tmp/neg.json"
 printf '{"rectangles": [' >"$tmp/syntax.json"
+printf '{%s, "lights": [{"type": "point", "position": [0,0,0.5]}]}\n' "${light/\"look_at\": \[0,0,0\]/\"look_at\": [0,0,0], \"up\": [0,0,1]}" >"$tmp/camup.json"
 expect_error "render: missing scene"      render "$tmp/none.json" -o "$png"
 expect_error "render: JSON syntax"        render "$tmp/syntax.json" -o "$png"
 expect_error "render: laser without nm"   render "$tmp/nowl.json" -o "$png"
@@ -414,6 +415,21 @@ expect_clean "render: lens wider than plate" "out.csv*" "aperture_width_m"      
 expect_error "validate image-lens-psf: even pixels" validate image-lens-psf --pixels 60 --rays 1000 "$csv"
 expect_error "validate image-lens-psf: infrared"    validate image-lens-psf --wavelength 1e-6 --rays 1000 "$csv"
 expect_error "validate image-lens-psf: strong lens" validate image-lens-psf --focal 1e-3 --rays 1000 "$csv"
+# Every output is checked before the render: a folder where a file goes (CSV, sidecar), and --spp past the
+# photon cap (computed in double: 1e13 × 64 pixels would wrap a uint64), a negative --seed.
+mkdir -p "$tmp/d.csv" "$tmp/side.json"
+expect_error "render: CSV is a folder"    render "$tmp/light.json" -o "$png" --photons 100 --csv "$tmp/d.csv"
+expect_clean "render: sidecar is a folder" "side.p*" "side.json: is a folder" render "$tmp/light.json" -o "$tmp/side.png" --photons 100
+expect_clean "render: --spp over the cap" "out.csv*" "over the limit of 1e13" render "$tmp/light.json" -o "$png" --spp 1e13
+expect_clean "render: negative seed"      "out.csv*" "--seed"  render "$tmp/light.json" -o "$png" --photons 100 --seed -3
+expect_clean "render: camera up"          "out.csv*" "camup.json: camera.up: must" render "$tmp/camup.json" -o "$png" --photons 100
+expect_clean "validate: CSV is a folder"  "out.csv*" "is a folder" validate slit-fraunhofer --rays 1000 --csv "$tmp/d.csv"
+expect_clean "validate: negative seed"    "out.csv*" "--seed" validate slit-fraunhofer --rays 1000 --seed -1 "$csv"
+expect_ir_error "negative seed" "{$mat, $box, $src, $lis}" --seed -2
+mkdir -p "$tmp/out.json"
+expect_clean "ir: sidecar is a folder" "out.[wc]*" "out.json: is a folder" ir "$tmp/room.json" -o "$tmp/out.wav" --rays 2000
+rmdir "$tmp/out.json"
+
 # The good path writes the PNG (by its signature), the PFM and the sidecar.
 "$bin" render "$tmp/light.json" -o "$tmp/good.png" --photons 2000 >/dev/null 2>&1
 if [ "$(head -c 8 "$tmp/good.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&

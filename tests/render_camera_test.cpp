@@ -97,7 +97,7 @@ TEST(RenderScene, ErrorsNameTheField) {
             std::string::npos);
   EXPECT_NE(error(rect + R"(, "lights": [{"type": "point", "position": [0,0,1]}], "camera": {"position": [0,0,1],
             "look_at": [0,0,0], "up": [0,0,1], "fov_deg": 40, "pixels": [4, 4]})")
-                .find("s.json: camera: camera.up: must be non-zero and not parallel"),
+                .find("s.json: camera.up: must be non-zero and not parallel"),
             std::string::npos);
   EXPECT_EQ(error(rect + R"(, "lights": [{"type": "point", "position": [0,0,1]}], )" + camera), "no error");
 }

@@ -103,7 +103,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")->required();
   sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
   addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
-  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->capture_default_str();
+  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->check(seedValidator())->capture_default_str();
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file");
   sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)");
@@ -118,9 +118,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     core::ThreadLimit limit(common.threads);
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(o->scene, &warnings);
-    for (const std::string& out : {o->csv, o->plot})
-      if (!out.empty() && !std::filesystem::is_directory(std::filesystem::absolute(out).parent_path()))
-        throw core::InputError(out, "its folder does not exist");
+    checkOutputFiles({o->csv, o->plot});
     if (!o->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
       throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     // Comparison scenes are usually open (a barrier on the ground, a wall in free field): the room checks'

@@ -73,6 +73,7 @@ void checkOutputs(const DoorOptions& o, const std::string& png) {
   namespace fs = std::filesystem;
   checkOutputFile(o.out, ".wav");
   checkOutputFile(png, ".png");
+  checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png});
   std::error_code ec;
   for (const std::string& p : {o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png})
     for (const std::string& input : {o.in, o.room_file})
@@ -139,7 +140,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--door", opts->door, "the door's name (default: the room's only door)");
   sub->add_option("--listener", opts->listener, "render this listener only (default: all, one channel each)");
   addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
-  CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)");
+  CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
+                                  ->check(seedValidator());
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(CLI::Range(-120.0, 120.0));
   sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)");

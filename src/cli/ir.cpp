@@ -81,7 +81,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");
   CLI::Option* seed_option =
       sub->add_option("--seed", common.seed, "random seed (default: the room file's output.seed); the same seed "
-                                             "gives the same IR");
+                                             "gives the same IR")
+          ->check(seedValidator());
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
       ->check(CLI::Range(-1, 50));
@@ -101,7 +102,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                                 ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
                                 : opts->out;
     checkOutputFile(wav, ".wav");
-    if (!opts->plot.empty()) checkOutputFile(opts->plot, "");
+    checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot});
     if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
       throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the

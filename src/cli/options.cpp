@@ -1,4 +1,7 @@
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "diffray/cli/commands.h"
@@ -7,9 +10,21 @@
 namespace diffray::cli {
 
 std::uint64_t wholeCount(const std::string& option, double v) {
-  if (!(v >= 1 && v <= 1e13 && std::floor(v) == v))
+  if (!(v >= 1 && v <= kMaxCount && std::floor(v) == v))
     throw core::InputError(option, "must be a whole number >= 1 (e.g. 2000000 or 2e6)");
   return static_cast<std::uint64_t>(v);
+}
+
+const CLI::Validator& seedValidator() {
+  // CLI11 would read "-3" into a std::uint64_t as 2^64 - 3; a seed is refused unless all digits.
+  static const CLI::Validator check(
+      [](const std::string& text) -> std::string {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+          return "must be a whole number >= 0, got " + text;
+        return {};
+      },
+      "SEED", "seed");
+  return check;
 }
 
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help) {
@@ -44,7 +59,27 @@ void checkOutputFile(const std::string& path, const std::string& ext) {
   namespace fs = std::filesystem;
   if (!ext.empty() && fs::path(path).extension() != ext)
     throw core::InputError(path, "the output must be a " + ext + " file");
-  if (!fs::is_directory(fs::absolute(path).parent_path())) throw core::InputError(path, "its folder does not exist");
+  const fs::path folder = fs::absolute(path).parent_path();
+  if (!fs::is_directory(folder)) throw core::InputError(path, "its folder does not exist");
+  if (fs::is_directory(path)) throw core::InputError(path, "is a folder, not a file");
+  // The file is written as a temporary beside it, then renamed (core/atomic_file.h): the folder must be writable.
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) throw core::InputError(path, "its folder is not writable");
+}
+
+void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<std::string>& inputs) {
+  std::error_code ec;
+  for (const std::string& path : paths) {
+    if (path.empty()) continue;
+    checkOutputFile(path, "");
+    for (const std::string& input : inputs)
+      if (!input.empty() && std::filesystem::equivalent(path, input, ec))
+        throw core::InputError(path, "would overwrite the input " + input);
+  }
+}
+
+OutputFiles::~OutputFiles() {
+  if (kept_) return;
+  for (const std::string& path : written_) std::remove(path.c_str());
 }
 
 std::string withExtension(const std::string& path, const std::string& ext) {

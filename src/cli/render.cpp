@@ -5,7 +5,6 @@
 // every pixel's radiance, standard error, XYZ and linear sRGB. Every output is written atomically, and all
 // are checked before the render starts; bad input is one line and exit 2.
 #include <chrono>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -33,13 +32,11 @@ struct RenderCliOptions {
   bool seed_given = false;
 };
 
+/// Every output (PNG, float image, sidecar, CSV), checked before the scene is even read.
 void checkOutput(const RenderCliOptions& o) {
-  namespace fs = std::filesystem;
   checkOutputFile(o.out, ".png");
   if (!o.csv.empty()) checkOutputFile(o.csv, ".csv");
-  std::error_code ec;
-  for (const std::string& f : {o.out, withExtension(o.out, ".json"), withExtension(o.out, "." + o.float_format), o.csv})
-    if (!f.empty() && fs::equivalent(f, o.scene, ec)) throw core::InputError(f, "would overwrite the scene file");
+  checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, "." + o.float_format), o.csv}, {o.scene});
 }
 
 }  // namespace
@@ -53,7 +50,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")->required();
   auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
   sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
-  sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)");
+  sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)")->check(seedValidator());
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
   sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");
   sub->add_option("--float", o->float_format, "linear float image beside the PNG: pfm (default) or exr (OpenEXR)")
@@ -64,8 +61,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
     const render::LightScene scene = render::loadLightScene(o->scene);
     std::uint64_t photons = scene.settings.photons;
     if (sub->count("--photons")) photons = wholeCount("--photons", o->photons);
-    if (sub->count("--spp"))
-      photons = wholeCount("--spp", o->spp) * static_cast<std::uint64_t>(scene.camera.width) * scene.camera.height;
+    if (sub->count("--spp")) photons = render::sppPhotons(wholeCount("--spp", o->spp), scene.camera.width, scene.camera.height);
     if (sub->count("--exposure")) core::requirePositive("--exposure", o->exposure);
     const std::uint64_t seed = sub->count("--seed") ? common.seed : scene.settings.seed;
 
@@ -85,12 +81,17 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
     const double exposure = o->exposure > 0 ? o->exposure
                             : scene.settings.exposure > 0 ? scene.settings.exposure
                                                           : render::autoExposure(img);
-    image::writePng(o->out, img, exposure);
+    OutputFiles written;
+    written.write(o->out, [&](const std::string& f) { image::writePng(f, img, exposure); });
     const std::string float_file = withExtension(o->out, "." + o->float_format);
-    if (o->float_format == "exr") image::writeExr(float_file, img);
-    else image::writePfm(float_file, img);
+    written.write(float_file, [&](const std::string& f) {
+      if (o->float_format == "exr") image::writeExr(f, img);
+      else image::writePfm(f, img);
+    });
     if (!o->csv.empty())
-      core::writeFileAtomically(o->csv, [&](std::ostream& out) { render::writePixelCsv(out, r, img); });
+      written.write(o->csv, [&](const std::string& f) {
+        core::writeFileAtomically(f, [&](std::ostream& out) { render::writePixelCsv(out, r, img); });
+      });
     nlohmann::json files{{"png", o->out}, {o->float_format, float_file}};
     if (!o->csv.empty()) files["csv"] = o->csv;
     const double p = r.emitted;
@@ -115,7 +116,10 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                           {"evanescent", r.evanescent / p},
                           {"escaped", r.escaped / p},
                           {"bounce_limit", r.bounce_limit / p}}}};
-    core::writeFileAtomically(withExtension(o->out, ".json"), [&](std::ostream& out) { out << side.dump(2) << "\n"; });
+    written.write(withExtension(o->out, ".json"), [&](const std::string& f) {
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << "\n"; });
+    });
+    written.keep();
     std::cout << side.dump() << std::endl;
     return 0;
   };

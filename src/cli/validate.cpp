@@ -102,6 +102,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("case", opts->case_name, "case name, or all")->required();
   addRaysOption(sub, opts->rays, "rays per case (default: the case's own; 2e6 is accepted)");
   sub->add_option("--seed", common.seed, "random seed; the same seed gives the same result")
+      ->check(seedValidator())
       ->capture_default_str();
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
@@ -161,12 +162,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       params.push_back(validate::resolveParams(*c, given));
     }
     // Outputs are checked before the (possibly long) run: a missing folder or gnuplot fails at once.
-    for (const std::string* out : {&opts->csv, &opts->plot}) {
-      if (out->empty()) continue;
-      const auto parent = std::filesystem::absolute(*out).parent_path();
-      if (!std::filesystem::is_directory(parent))
-        throw core::InputError(*out, "its folder does not exist");
-    }
+    checkOutputFiles({opts->csv, opts->plot});
     if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
       throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
     std::vector<validate::CaseResult> results;

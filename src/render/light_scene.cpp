@@ -223,7 +223,7 @@ CameraSpec parseCamera(const JsonField& f) {
   try {
     Camera check(c);
   } catch (const core::InputError& e) {
-    f.fail(e.what());
+    throw core::InputError(f.file(), e.what());  // Camera names the field (camera.up): not "camera: camera.up"
   }
   return c;
 }

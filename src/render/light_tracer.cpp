@@ -1,7 +1,11 @@
 #include "diffray/render/light_tracer.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "diffray/color/cie1931.h"
 #include "diffray/color/wavelength.h"
@@ -231,6 +235,40 @@ class PathTracer {
 
 }  // namespace
 
+std::uint64_t sppPhotons(std::uint64_t spp, int width, int height) {
+  const double photons = static_cast<double>(spp) * width * height;  // in double: no uint64 wrap-around
+  if (!(photons <= 1e13))
+    throw core::InputError("--spp", std::to_string(spp) + " per pixel × " + std::to_string(width) + "×" +
+                                        std::to_string(height) + " pixels is over the limit of 1e13 photons");
+  return spp * static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+}
+
+double renderPeakBytes(int width, int height, int threads) {
+  // Alive at once (core::orderedReduce): the total plus one accumulator per thread, each holding xyz (3
+  // doubles) and the radiance tally's sum and sum_sq per pixel; a chunk being traced adds its scratch
+  // (1 double per pixel); then linearSrgb's image (3 floats) and PNG bytes (3) are small beside that.
+  const double pixels = static_cast<double>(width) * height;
+  const double accumulators = 1.0 + std::max(1, threads);
+  return pixels * (kAccumulatorBytesPerPixel * accumulators + 8.0 * std::max(1, threads));
+}
+
+double physicalMemoryBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
+
+void checkRenderMemory(int width, int height, int threads, double physical_bytes) {
+  const double need = renderPeakBytes(width, height, threads);
+  if (physical_bytes > 0 && need > 0.5 * physical_bytes) {
+    char what[256];
+    std::snprintf(what, sizeof what,
+                  "a %d×%d image with %d threads needs about %.1f GB, over half of this machine's %.1f GB; use "
+                  "fewer pixels or fewer --threads",
+                  width, height, threads, need / 1e9, physical_bytes / 1e9);
+    throw core::InputError("camera.pixels", what);
+  }
+}
+
 RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) {
   DIFFRAY_CHECK(ps.spec != nullptr);
   const LightScene& s = *ps.spec;
@@ -241,6 +279,7 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
   for (const Light& l : s.lights) cdf.push_back(total += l.power_w);
   const double photon_energy = total / static_cast<double>(options.photons);
   const int npix = ps.camera.width() * ps.camera.height();
+  checkRenderMemory(ps.camera.width(), ps.camera.height(), core::ThreadLimit::current(), physicalMemoryBytes());
 
   auto make = [&] {
     RenderResult r;
@@ -248,10 +287,12 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
     r.height = ps.camera.height();
     r.xyz.assign(3 * static_cast<std::size_t>(npix), 0.0);
     r.radiance = receiver::ScreenTally(npix);
+    r.radiance.chunk = {};  // the open chunk's scratch lives only while a chunk is traced (body below)
     return r;
   };
   auto body = [&](RenderResult& acc, core::Rng& chunk_rng, std::uint64_t begin, std::uint64_t end) {
     core::FastRng rng(chunk_rng);
+    acc.radiance.chunk.assign(static_cast<std::size_t>(npix), 0.0);
     PathTracer tracer(ps, acc, rng, options.uniform_shifts);
     for (std::uint64_t i = begin; i < end; ++i) {
       const double pick = rng.uniform() * total;
@@ -262,8 +303,9 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
       tracer.emit(s.lights[l], photon_energy);
     }
     acc.radiance.closeChunk();
+    acc.radiance.chunk = {};
   };
-  return core::deterministicReduce<RenderResult>(options.photons, options.chunk_photons, options.seed, make, body,
+  return core::orderedReduce<RenderResult>(options.photons, options.chunk_photons, options.seed, make, body,
                                                  core::reportProgressTo(options.on_progress));
 }
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "diffray/room/room.h"
 
@@ -19,8 +20,12 @@ struct CommonOptions {
   bool json = false;
 };
 
-/// A count given as a double (2e6 accepted): a whole number in [1, 1e13], else core::InputError naming `option`.
+/// The largest photon or ray count a command accepts.
+inline constexpr double kMaxCount = 1e13;
+/// A count given as a double (2e6 accepted): a whole number in [1, kMaxCount], else core::InputError naming `option`.
 std::uint64_t wholeCount(const std::string& option, double v);
+/// The check every --seed option carries: digits only (a negative seed would wrap around in a std::uint64_t).
+const CLI::Validator& seedValidator();
 
 /// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
@@ -29,8 +34,32 @@ void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
 
 /// Checks an output path before any work: its extension is `ext` (".wav"; not checked when empty) and its folder
-/// exists. Throws core::InputError naming the path.
+/// exists and is writable, and the path is not a folder. Throws core::InputError naming the path.
 void checkOutputFile(const std::string& path, const std::string& ext);
+/// checkOutputFile(path, "") for every non-empty path (extensions are the caller's), and none of them is one
+/// of the (non-empty) `inputs`: all of a command's outputs checked before any work.
+void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<std::string>& inputs = {});
+
+/// A command's set of output files: each written (atomically) through write(), and all of them removed again
+/// if the command fails before keep() — so an error never leaves part of the set behind. Not thread-safe.
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();
+  /// Calls write_file(path) and records `path` as written.
+  template <class WriteFile>
+  void write(const std::string& path, WriteFile&& write_file) {
+    write_file(path);
+    written_.push_back(path);
+  }
+  void keep() { kept_ = true; }  ///< the command succeeded: leave the files
+
+ private:
+  std::vector<std::string> written_;
+  bool kept_ = false;
+};
 
 /// `path` with its extension replaced by `ext` (".json").
 std::string withExtension(const std::string& path, const std::string& ext);

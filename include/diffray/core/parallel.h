@@ -5,12 +5,16 @@
 // gets the random stream Rng(seed, c) and chunk results are combined in a fixed tree that depends only on
 // the number of chunks (tbb::parallel_deterministic_reduce with a simple partitioner). So the same seed
 // gives bit-identical results for any thread count. Threads: TBB's default (all cores) unless a
-// ThreadLimit is alive.
+// ThreadLimit is alive. orderedReduce is the variant for large accumulators (a full-frame image): the same
+// chunks and streams, merged in chunk order through a pipeline, so at most threads + 1 accumulators are alive
+// (deterministicReduce keeps about threads × (log2(chunks) + 1)).
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/partitioner.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -36,17 +40,26 @@ inline auto reportProgressTo(const std::function<void(std::uint64_t)>& on_progre
   };
 }
 
+/// How deterministicReduce and orderedReduce cut `count` items: `chunks` chunks, chunk c = [begin(c), begin(c+1)).
+struct ChunkPlan {
+  std::uint64_t count, chunks;
+  ChunkPlan(std::uint64_t count_, std::uint64_t chunk_size) : count(count_), chunks((count_ + chunk_size - 1) / chunk_size) {
+    if (chunks < 32) chunks = count < 32 ? count : 32;
+  }
+  std::uint64_t begin(std::uint64_t c) const {
+    return (count / chunks) * c + (count % chunks) * c / chunks;  // = floor(count·c/chunks), no overflow
+  }
+};
+
 /// Runs `body(acc, rng, begin, end)` over [0, count) in fixed chunks and merges the per-chunk
 /// accumulators with `acc.merge(other)` in a thread-count-independent order. `make()` builds an empty
 /// accumulator. `on_chunk(items)` is called after each chunk (e.g. a progress bar); it must be thread-safe.
 template <class Acc, class Make, class Body, class OnChunk>
 Acc deterministicReduce(std::uint64_t count, std::uint64_t chunk_size, std::uint64_t seed, Make make,
                         Body body, OnChunk on_chunk) {
-  std::uint64_t chunks = (count + chunk_size - 1) / chunk_size;
-  if (chunks < 32) chunks = count < 32 ? count : 32;
-  auto bound = [&](std::uint64_t c) {
-    return (count / chunks) * c + (count % chunks) * c / chunks;  // = floor(count·c/chunks), no overflow
-  };
+  const ChunkPlan plan(count, chunk_size);
+  const std::uint64_t chunks = plan.chunks;
+  auto bound = [&](std::uint64_t c) { return plan.begin(c); };
   auto run = [&](const tbb::blocked_range<std::uint64_t>& range, Acc acc) {
     for (std::uint64_t c = range.begin(); c != range.end(); ++c) {
       Rng rng(seed, c);
@@ -63,6 +76,35 @@ Acc deterministicReduce(std::uint64_t count, std::uint64_t chunk_size, std::uint
   if (chunks == 0) return make();
   return tbb::parallel_deterministic_reduce(tbb::blocked_range<std::uint64_t>(0, chunks, 1), make(), run,
                                             join, tbb::simple_partitioner());
+}
+
+/// deterministicReduce's contract with a different fixed merge order: ((make() ⊕ chunk 0) ⊕ chunk 1) ⊕ …, each
+/// chunk traced into its own make() on some thread and merged serially in chunk order. Bit-identical for
+/// any thread count; at most `threads` chunk accumulators plus the total are alive at once.
+template <class Acc, class Make, class Body, class OnChunk>
+Acc orderedReduce(std::uint64_t count, std::uint64_t chunk_size, std::uint64_t seed, Make make, Body body,
+                  OnChunk on_chunk) {
+  const ChunkPlan plan(count, chunk_size);
+  Acc total = make();
+  std::uint64_t next = 0;
+  using Item = std::shared_ptr<Acc>;  // copyable, as pipeline filters want; null = no chunk
+  auto source = [&](tbb::flow_control& fc) -> std::uint64_t {
+    if (next == plan.chunks) fc.stop();
+    return next++;
+  };
+  auto trace = [&](std::uint64_t c) -> Item {
+    auto acc = std::make_shared<Acc>(make());
+    Rng rng(seed, c);
+    body(*acc, rng, plan.begin(c), plan.begin(c + 1));
+    on_chunk(plan.begin(c + 1) - plan.begin(c));
+    return acc;
+  };
+  auto fold = [&](const Item& acc) { total.merge(*acc); };
+  const std::size_t tokens = static_cast<std::size_t>(std::max(1, ThreadLimit::current()));
+  tbb::parallel_pipeline(tokens, tbb::make_filter<void, std::uint64_t>(tbb::filter_mode::serial_in_order, source) &
+                                     tbb::make_filter<std::uint64_t, Item>(tbb::filter_mode::parallel, trace) &
+                                     tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order, fold));
+  return total;
 }
 
 }  // namespace diffray::core

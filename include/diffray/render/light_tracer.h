@@ -74,6 +74,25 @@ struct RenderResult {
   double negativeScoreFraction() const;
 };
 
+/// Traces options.photons photons; first refuses (checkRenderMemory, with core::ThreadLimit::current() threads
+/// and physicalMemoryBytes()) a camera whose accumulators would not fit in memory.
 RenderResult renderLight(const PreparedScene& scene, const RenderOptions& options);
+
+/// `spp` photons per pixel on a width × height camera: spp × width × height, computed in double and refused
+/// (core::InputError naming --spp) above 1e13 photons, the cap on --photons (cli::kMaxCount).
+std::uint64_t sppPhotons(std::uint64_t spp, int width, int height);
+
+/// Bytes per pixel of one chunk accumulator while it is merged: xyz (3 doubles), the radiance tally's sum
+/// and sum_sq (the open chunk's scratch, 1 double, exists only while a chunk is traced).
+inline constexpr double kAccumulatorBytesPerPixel = 5 * sizeof(double);
+/// Estimated peak bytes of renderLight's accumulators for a width × height camera on `threads` threads:
+/// pixels × (kAccumulatorBytesPerPixel × (threads + 1) + 8 × threads) — the total, one accumulator per
+/// thread and each tracing thread's chunk scratch (core::orderedReduce).
+double renderPeakBytes(int width, int height, int threads);
+/// sysconf(_SC_PHYS_PAGES) × sysconf(_SC_PAGE_SIZE), or 0 when unknown.
+double physicalMemoryBytes();
+/// Throws core::InputError("camera.pixels", …) naming the size, the estimate and the remedy (fewer pixels or
+/// --threads) when renderPeakBytes exceeds half of `physical_bytes` (0: unknown, never refused).
+void checkRenderMemory(int width, int height, int threads, double physical_bytes);
 
 }  // namespace diffray::render
