@@ -130,11 +130,25 @@ Truncation lundeby(const std::vector<double>& e, double bin_s) {
     if (settled) break;
   }
   if (!(tc > 0.0)) return none;
-  // A response that ends before its decay meets the noise (cut short, with little or no noise): the
-  // integral stops at the end and the late line's continuation stands in for the rest, as past a
-  // crosspoint. Without it the Schroeder curve plunges at the cut: T30 read up to 18 % short, and the
-  // decay range counted the plunge (90 dB from a 1 s cut of a 2 s decay).
-  tc = std::min(tc, t_end);
+  if (tc >= t_end) {
+    // The response ends before its decay meets the noise (cut short, with little or no noise): the
+    // integral runs to the end and an exponential continuation stands in for the rest, as past a
+    // crosspoint. Without it the Schroeder curve plunges at the cut: T30 read up to 18 % short, and the
+    // decay range counted the plunge (90 dB from a 1 s cut of a 2 s decay). Its power starts from what the
+    // last 10 % of the response actually holds (mean P̄ over Δ, at the decay line's rate k:
+    // P(end) = P̄·kΔ/(e^{kΔ} − 1)), not from the line, which a sparse or double-sloped tail can sit far
+    // above.
+    const double k = -line.slope * std::log(10.0) / 10.0;
+    const long last = std::max(1L, n / 10);
+    const double span_s = edgeS(last, bin_s), k_span = k * span_s;
+    const double p_end = noise * (k_span > 1e-12 ? k_span / std::expm1(k_span) : 1.0);
+    Truncation tr;
+    tr.bins = n;
+    tr.tail_rate = k;
+    tr.tail = p_end / k;
+    tr.truncated = true;
+    return tr;
+  }
   Truncation tr;
   tr.bins = std::max(1L, static_cast<long>(tc / bin_s));
   tr.tail_rate = -line.slope * std::log(10.0) / 10.0;
