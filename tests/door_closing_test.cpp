@@ -121,3 +121,56 @@ TEST(DoorClosing, ShutDoorPassesItsPanelsTransmissionAndTheGapKeepsItsLineOfSigh
   EXPECT_NEAR(direct(1, through_gap), (1.0 + 0.5 * tau0) * direct(0, through_gap), 1e-12 * free_field);
   EXPECT_NEAR(direct(1, behind_panel), 0.5 * tau0 * direct(0, behind_panel), 1e-12 * free_field);
 }
+
+// The crossfade's key frames must increase strictly; the halving schedule bunches them at the end of the
+// close, so a short close at a low rate runs out of samples. keyFrames refuses before any tracing and names
+// the largest count that fits: that count's frames increase strictly (checked here directly), one more's not.
+TEST(DoorClosing, KeyFramesRefuseStepsWithinOneSampleAndNameWhatFits) {
+  const double fs = 16000.0, start = 1.0, end = 1.001, width = 0.9;
+  const auto strictly = [&](int steps) {
+    long last = -1;
+    for (const auto& s : dd::closingSchedule(width, start, end, steps)) {
+      const long key = std::lround(s.time_s * fs);
+      if (key <= last) return false;
+      last = key;
+    }
+    return true;
+  };
+  ASSERT_FALSE(strictly(8));
+  std::string message;
+  try {
+    dd::keyFrames(dd::closingSchedule(width, start, end, 8), fs, width, start, end);
+  } catch (const diffray::core::InputError& e) {
+    message = e.what();
+  }
+  ASSERT_NE(message.find("--steps"), std::string::npos) << message;
+  const auto at = message.find("at most ");
+  ASSERT_NE(at, std::string::npos) << message;
+  const int fits = std::stoi(message.substr(at + 8));
+  EXPECT_TRUE(strictly(fits)) << message;
+  EXPECT_FALSE(strictly(fits + 1)) << message;
+  const auto keys = dd::keyFrames(dd::closingSchedule(width, start, end, fits), fs, width, start, end);
+  EXPECT_EQ(keys.size(), static_cast<std::size_t>(fits));
+  EXPECT_EQ(keys.front(), 16000);
+}
+
+// A door's IR has the same gain as a filter, whatever the dry signal's rate: its in-band power gain is
+// Σh²·rate/(2B) (Parseval, energy inside the band B), so Σh²·rate must be the same at every rate. At 24 and
+// 48 kHz the bands fit below Nyquist and the IR is synthesized at that rate; at 22.05 kHz the 8 kHz octave
+// does not and it is synthesized at 48 kHz and resampled. Before, the 24 kHz IR was 3 dB weak (ratio 0.5).
+// Tolerance 3 %: the realisations differ by rate, and each matches the band's energy to about 1 %.
+TEST(DoorClosing, ImpulseResponseKeepsTheRoomRatesGainAtAnySignalRate) {
+  di::EnergyResponse r;
+  r.bands = diffray::core::Bands::octave();
+  r.bin_s = 1e-3;
+  r.traced.assign(static_cast<std::size_t>(r.bands.size()), std::vector<double>(400, 0.0));
+  const int k1 = r.bands.find(1000);
+  for (int i = 5; i < 400; ++i) r.traced[k1][i] = 1e-3 * std::exp(-13.8 * i * 1e-3 / 0.5);
+  const auto gain = [&](double fs) {
+    double sum = 0.0;
+    for (float v : dd::impulseResponseFor(r, 48000.0, fs, 0.4, 200.0, 343.0, 3)) sum += static_cast<double>(v) * v;
+    return sum * fs;
+  };
+  const double at_room_rate = gain(48000.0);
+  for (double fs : {24000.0, 22050.0}) EXPECT_NEAR(gain(fs) / at_room_rate, 1.0, 0.03) << fs << " Hz";
+}

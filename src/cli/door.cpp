@@ -31,9 +31,7 @@
 #include "diffray/door/closing.h"
 #include "diffray/door/sliding_panel.h"
 #include "diffray/dsp/crossfade_convolver.h"
-#include "diffray/dsp/resample.h"
 #include "diffray/dsp/spectrogram.h"
-#include "diffray/ir/synthesis.h"
 #include "diffray/room/scene_file.h"
 
 namespace diffray::cli {
@@ -173,10 +171,13 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     audio::AudioReader reader(opts->in);
     const double fs = reader.sampleRateHz();
     // The IRs are synthesized at the dry signal's rate when the room's bands fit below its Nyquist frequency,
-    // else at the room's own rate and resampled (as filters) to the dry signal's.
+    // else at the room's own rate and resampled (as filters) to the dry signal's; either way with the room
+    // rate's gain (door::impulseResponseFor).
     const bool fits = room.bands.upperHz(room.bands.size() - 1) < 0.5 * fs;
     const double synth_fs = fits ? fs : room.output.sample_rate_hz;
     checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
+    // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
+    const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);
     if (end_s > static_cast<double>(reader.frames()) / fs)
       warnings.push_back("the door is still closing when " + opts->in + " ends (at " +
                          std::to_string(static_cast<double>(reader.frames()) / fs) + " s); the output's tail is the "
@@ -207,22 +208,17 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
 
     // IRs at the dry signal's rate, key frames, and the levels for the sidecars.
     std::vector<std::vector<std::vector<float>>> irs(schedule.size());
-    std::vector<long> keys;
     nlohmann::ordered_json steps = nlohmann::ordered_json::array();
     std::ostringstream csv;
     csv << "step,time_s,gap_m,listener";
     for (int b = 0; b < room.bands.size(); ++b) csv << ",level_re_open_db_" << room.bands.label(b) << "hz";
     csv << '\n' << std::setprecision(6);
     for (std::size_t k = 0; k < schedule.size(); ++k) {
-      keys.push_back(std::lround(schedule[k].time_s * fs));
       nlohmann::ordered_json levels = nlohmann::ordered_json::object(), energies = nlohmann::ordered_json::object();
       for (std::size_t i = 0; i < chosen.size(); ++i) {
         const int l = chosen[i];
-        const std::vector<double> h = ir::synthesize(cr.responses[k][l], synth_fs, cr.length_s, cr.volume_m3,
-                                                     cr.speed_of_sound_m_s, common.seed + 7919ull * l,
-                                                     ir::Phasing::Coherent);
-        irs[k].emplace_back(h.begin(), h.end());
-        if (synth_fs != fs) irs[k].back() = dsp::resampleImpulseResponse(irs[k].back(), 1, synth_fs, fs);
+        irs[k].push_back(door::impulseResponseFor(cr.responses[k][l], room.output.sample_rate_hz, fs, cr.length_s,
+                                                  cr.volume_m3, cr.speed_of_sound_m_s, common.seed + 7919ull * l));
         nlohmann::ordered_json row = nlohmann::ordered_json::array(), absolute = nlohmann::ordered_json::array();
         for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(energy[k][i][b]);
         energies[room.listeners[l].name] = absolute;

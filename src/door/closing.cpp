@@ -5,6 +5,8 @@
 
 #include "diffray/core/error.h"
 #include "diffray/door/sliding_panel.h"
+#include "diffray/dsp/resample.h"
+#include "diffray/ir/synthesis.h"
 #include "diffray/transport/room_simulation.h"
 
 namespace diffray::door {
@@ -93,6 +95,44 @@ ClosingResponse simulateClosing(const room::Room& room, int door, const std::vec
     }
     out.responses.push_back(std::move(sim.listeners));
   }
+  return out;
+}
+
+std::vector<long> keyFrames(const std::vector<ClosingStep>& schedule, double sample_rate_hz, double width_m,
+                            double start_s, double end_s) {
+  const auto frames = [&](const std::vector<ClosingStep>& steps) {
+    std::vector<long> keys;
+    for (const ClosingStep& s : steps) keys.push_back(std::lround(s.time_s * sample_rate_hz));
+    return keys;
+  };
+  const auto increasing = [](const std::vector<long>& keys) {
+    for (std::size_t k = 1; k < keys.size(); ++k)
+      if (keys[k] <= keys[k - 1]) return false;
+    return true;
+  };
+  std::vector<long> keys = frames(schedule);
+  if (increasing(keys)) return keys;
+  int fits = static_cast<int>(schedule.size()) - 1;
+  while (fits > 2 && !increasing(frames(closingSchedule(width_m, start_s, end_s, fits)))) --fits;
+  const std::string most = fits >= 2 && increasing(frames(closingSchedule(width_m, start_s, end_s, fits)))
+                               ? "at most " + std::to_string(fits) + " steps fit"
+                               : "not even 2 steps fit";
+  throw core::InputError("--steps", std::to_string(schedule.size()) + " steps put two key times within one sample at " +
+                                        std::to_string(static_cast<long>(sample_rate_hz)) + " Hz (the gaps halve): " +
+                                        most + "; use fewer steps or a longer --close");
+}
+
+std::vector<float> impulseResponseFor(const ir::EnergyResponse& response, double room_hz, double signal_hz,
+                                      double length_s, double volume_m3, double speed_of_sound_m_s,
+                                      std::uint64_t seed) {
+  const bool fits = response.bands.upperHz(response.bands.size() - 1) < 0.5 * signal_hz;
+  const double synth_hz = fits ? signal_hz : room_hz;
+  const std::vector<double> h =
+      ir::synthesize(response, synth_hz, length_s, volume_m3, speed_of_sound_m_s, seed, ir::Phasing::Coherent);
+  if (!fits) return dsp::resampleImpulseResponse(std::vector<float>(h.begin(), h.end()), 1, room_hz, signal_hz);
+  const double scale = std::sqrt(room_hz / signal_hz);
+  std::vector<float> out(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) out[i] = static_cast<float>(scale * h[i]);
   return out;
 }
 

@@ -70,4 +70,21 @@ void addScaled(ir::EnergyResponse& response, const ir::EnergyResponse& other, co
 /// Energy per band of a response (traced + arrivals), J/m².
 core::BandArray bandEnergies(const ir::EnergyResponse& response);
 
+/// The key frames of `schedule` at `sample_rate_hz`: round(time·rate). Throws core::InputError naming --steps
+/// (with the largest step count that fits) when two coincide: the halving schedule puts the last keys
+/// (END − START)·2^−k apart, under a sample for many steps over a short close, and the crossfade needs them
+/// strictly increasing. Call it before tracing.
+std::vector<long> keyFrames(const std::vector<ClosingStep>& schedule, double sample_rate_hz, double width_m,
+                            double start_s, double end_s);
+
+/// The impulse response of `response` to convolve with a signal at `signal_hz` (ir::synthesize, coherent
+/// phasing). It has the gain, as a filter, of the response synthesized at the room's rate `room_hz`, whatever
+/// `signal_hz` is: synthesized at `signal_hz` and scaled by √(room_hz / signal_hz) when the room's bands fit
+/// below the signal's Nyquist frequency (Σh² is the band energy at any rate, so a filter's in-band gain² is
+/// Σh²·rate/(2B): without the scale a 24 kHz signal came out 3 dB quieter than a 48 kHz one), else
+/// synthesized at `room_hz` and resampled as a filter (dsp::resampleImpulseResponse).
+std::vector<float> impulseResponseFor(const ir::EnergyResponse& response, double room_hz, double signal_hz,
+                                      double length_s, double volume_m3, double speed_of_sound_m_s,
+                                      std::uint64_t seed);
+
 }  // namespace diffray::door
