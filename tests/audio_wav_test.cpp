@@ -94,6 +94,16 @@ TEST(AudioWav, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
   EXPECT_EQ(dir.entries(), 1);
 }
 
+TEST(AudioWav, SizeLimitIsTheRiff32BitField) {
+  // 2^32 − 1 bytes is the largest a 32-bit size field holds: 10^9 mono float frames (4·10^9 bytes) fit,
+  // 2^30 (exactly 4 GiB) do not, nor 2^29 stereo ones; 3600 s at 384 kHz mono (1.3824·10^9 frames) do not.
+  EXPECT_NO_THROW(requireWavFits("-o", 1e9, 1, 48000.0));
+  EXPECT_THROW(requireWavFits("-o", 1073741824.0, 1, 48000.0), core::InputError);
+  EXPECT_THROW(requireWavFits("-o", 536870912.0, 2, 48000.0), core::InputError);
+  EXPECT_NO_THROW(requireWavFits("-o", 536870912.0 - 1024.0, 2, 48000.0));
+  EXPECT_THROW(requireWavFits("--duration", 3600.0 * 384000.0, 1, 384000.0), core::InputError);
+}
+
 TEST(AudioWav, ReadErrorsNameTheFileAndTheReason) {
   TempDir dir;
   const std::string missing = dir.file("missing.wav");

@@ -215,6 +215,10 @@ expect_auralize_error "output folder missing"  --ir "$tmp/ok.wav" --in "$tmp/ok.
 expect_auralize_error "output not a .wav"      --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.csv"
 expect_auralize_error "NaN gain"               --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain nan
 expect_auralize_error "no --in"                --ir "$tmp/ok.wav" -o "$tmp/wet.wav"
+# --gain is bounded like door's (±120 dB) when parsing, not after the whole convolution.
+expect_clean "auralize: gain 200 dB"       "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain 200
+expect_clean "auralize: gain -1e9 dB"      "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --normalize --gain -1e9
+expect_clean "auralize: --play, gain 200"  "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --gain 200
 cp "$tmp/ok.wav" "$tmp/dry.wav"
 "$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/dry.wav" -o "$tmp/dry.wav" >/dev/null 2>"$tmp/stderr"
 code=$?
@@ -337,6 +341,9 @@ expect_signal_error "output not a .wav"     sweep -o "$tmp/sig.csv"
 expect_signal_error "speed out of range"    speech -o "$tmp/sig.wav" --speed 5
 expect_signal_error "unknown voice"         speech -o "$tmp/sig.wav" --voice nosuchvoice
 expect_signal_error "empty text"            speech -o "$tmp/sig.wav" --text " "
+# Beyond one WAV file (4 GiB of float32): refused before the samples are made (5.5 GB here).
+expect_clean "signal: 3600 s at 384 kHz" "sig.*" "4 GiB" signal clicks -o "$tmp/sig.wav" --rate 384000 --duration 3600
+expect_clean "signal: sweep of 3000 s at 384 kHz" "sig.*" "4 GiB" signal sweep -o "$tmp/sig.wav" --rate 384000 --duration 3000
 if "$bin" signal clicks -o "$tmp/sig.wav" --duration 0.5 --interval 0.1 >/dev/null 2>"$tmp/stderr" &&
    [ "$(stat -c %s "$tmp/sig.wav")" -gt 96000 ]; then passes=$((passes + 1)); else
   echo "FAIL: signal: a good click train was not written"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
@@ -352,6 +359,9 @@ expect_auralize_error "--device name that does not exist"  --ir "$tmp/ok.wav" --
 expect_auralize_error "--device without --play"            --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --device 0
 expect_auralize_error "neither -o nor --play"              --ir "$tmp/ok.wav" --in "$tmp/ok.wav"
 expect_auralize_error "--play with a tiny --block"         --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --block 1
+# --block is checked before -o is written (with a device, too), and refused without --play, like --device.
+expect_clean "auralize: --play -o with a huge --block" "wet.*" "--block" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play -o "$tmp/wet.wav" --block 100000
+expect_clean "auralize: --block without --play"        "wet.*" "--block" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --block 256
 if grep -q "no audio output devices" "$tmp/devices"; then
   expect_auralize_error "--play without an audio device"      --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play
   expect_auralize_error "--play and -o without an audio device" --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play -o "$tmp/wet.wav"

@@ -2,7 +2,8 @@
 //  * the sweep's zero crossings lie where the phase 2π·f1·T/L·(e^{tL/T} − 1) is a multiple of π, solved
 //    for t in closed form (t_k = T/L·ln(1 + k·L/(2·f1·T))); the crossing spacing gives the instantaneous
 //    frequency f1·(f2/f1)^{t/T};
-//  * clicks at round(k·interval·rate) with the exact amplitude, zero elsewhere; a Hann click's samples;
+//  * clicks at round(k·interval·rate) with the exact amplitude, zero elsewhere; a Hann click's samples and its
+//    peak at the amplitude for even widths too;
 //  * a sine resampled 44.1 → 48 kHz is the same sine (amplitude, phase, no delay) sampled at 48 kHz, and the
 //    length is round(n·ratio); an impulse response keeps its DC gain Σh;
 //  * speech from espeak-ng: plausible length and peak, not silent (skipped when espeak-ng is missing).
@@ -121,6 +122,34 @@ TEST(DspSignals, ClickTrainPositionsAndAmplitudesAreExact) {
 
   spec.interval_s = 2.0 / 48000.0;  // shorter than a 5-sample click
   EXPECT_THROW(dsp::clickTrain(spec), core::InputError);
+}
+
+TEST(DspSignals, ClickPeakIsTheAmplitudeForEveryWidth) {
+  // The requested peak (--level) whatever the width: even widths have no middle sample, so the Hann window
+  // sin²(π(j+1)/(w+1)) tops out at sin²(π·(w/2)/(w+1)) < 1 (¾ for w = 2) unless scaled by it.
+  dsp::ClickSpec spec;
+  spec.rate_hz = 48000.0;
+  spec.duration_s = 0.01;
+  spec.interval_s = 0.005;
+  spec.amplitude = 0.5;
+  for (int w = 1; w <= 9; ++w) {
+    spec.width_samples = w;
+    const std::vector<float> x = dsp::clickTrain(spec);
+    EXPECT_FLOAT_EQ(*std::max_element(x.begin(), x.end()), 0.5f) << "width " << w;
+  }
+  // w = 2: both samples sin²(π/3) = ¾ before scaling, so both at the peak; w = 4: sin²(π/5)/sin²(2π/5) at
+  // the ends.
+  spec.width_samples = 2;
+  const std::vector<float> two = dsp::clickTrain(spec);
+  EXPECT_FLOAT_EQ(two[0], 0.5f);
+  EXPECT_FLOAT_EQ(two[1], 0.5f);
+  spec.width_samples = 4;
+  const std::vector<float> four = dsp::clickTrain(spec);
+  const double end = 0.5 * std::pow(std::sin(kPi / 5.0) / std::sin(2.0 * kPi / 5.0), 2);
+  EXPECT_NEAR(four[0], end, 1e-7);
+  EXPECT_FLOAT_EQ(four[1], 0.5f);
+  EXPECT_FLOAT_EQ(four[2], 0.5f);
+  EXPECT_NEAR(four[3], end, 1e-7);
 }
 
 TEST(DspResample, SineStaysTheSameSineAt48k) {

@@ -1,9 +1,11 @@
 // The spectrogram against closed forms: a sine's peak at its frequency and amplitude (the documented
 // scaling), Parseval's theorem frame by frame (the windowed frame's energy, computed here, equals the
 // energy of the one-sided spectrum read back from the dB values), and a linear chirp's peak following its
-// instantaneous frequency f0 + (f1 − f0)·t/T.
+// instantaneous frequency f0 + (f1 − f0)·t/T; a single click in a long signal shows in the folded frames
+// (spectrogramPeaks) at the level an impulse has in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -110,6 +112,56 @@ TEST(Spectrogram, ChirpPeakFollowsInstantaneousFrequency) {
     EXPECT_LE(off, 1.0) << "frame " << i << " at " << s.time_s[static_cast<size_t>(i)] << " s";
   }
   std::cout << "[ measured ] chirp: worst peak offset " << worst_bins << " bins\n";
+}
+
+TEST(Spectrogram, ClickAnywhereInALongSignalShowsInThePeaks) {
+  // A unit impulse of amplitude A at offset m of a frame has |X[k]| = A·w[m] in every bin, i.e. it reads
+  // 20·log10(A·w[m]·4/window) (the documented scaling, Σw = window/2). With frames every window/4, some
+  // frame holds the click within window/8 of its centre, where w ≥ sin²(3π/8) > ½; folding keeps the loudest
+  // frame. The old automatic hop ceil(n/8000) (here 384 > window = 256) puts a click on a frame's first
+  // sample, where w = 0, and in no other frame: the spectrogram is floor everywhere.
+  const double fs = 48000.0, A = 0.5;
+  const int window = 256;
+  const long n = 8000L * window * 3 / 2, old_hop = (n + 7999) / 8000;
+  const double expected_db = 20.0 * std::log10(A * 0.5 * 4.0 / window);
+  for (long click : {old_hop * 5000, old_hop * 5000 + 7, n - 1 - old_hop}) {
+    std::vector<float> x(static_cast<size_t>(n), 0.0f);
+    x[static_cast<size_t>(click)] = static_cast<float>(A);
+    const Spectrogram peaks = diffray::dsp::spectrogramPeaks(x.data(), n, fs, window, window / 4, 8000);
+    ASSERT_LE(peaks.frames(), 8000);
+    const auto loudest = std::max_element(peaks.magnitude_db.begin(), peaks.magnitude_db.end());
+    EXPECT_GE(*loudest, expected_db) << "click at " << click;
+    // The loudest row's time lies within its run of frames (g·hop samples) plus half a window of the click.
+    const long row = (loudest - peaks.magnitude_db.begin()) / peaks.bins();
+    EXPECT_LE(std::abs(peaks.time_s[static_cast<size_t>(row)] - click / fs), (peaks.hop + 0.5 * window) / fs);
+    if (click % old_hop == 0) {
+      const Spectrogram old = diffray::dsp::spectrogram(x.data(), n, fs, window, static_cast<int>(old_hop));
+      EXPECT_EQ(*std::max_element(old.magnitude_db.begin(), old.magnitude_db.end()),
+                static_cast<float>(Spectrogram::kFloorDb));
+    }
+  }
+}
+
+TEST(Spectrogram, PeaksWithoutFoldingAreTheSpectrogram) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g(0.0f, 0.3f);
+  std::vector<float> x(5000);
+  for (float& v : x) v = g(rng);
+  const Spectrogram a = diffray::dsp::spectrogram(x.data(), 5000, 44100.0, 512, 128);
+  const Spectrogram b = diffray::dsp::spectrogramPeaks(x.data(), 5000, 44100.0, 512, 128, 1000);
+  EXPECT_EQ(a.magnitude_db, b.magnitude_db);
+  EXPECT_EQ(a.time_s, b.time_s);
+  EXPECT_EQ(a.hop, b.hop);
+  // Folded by 3: each row is the element-wise maximum of three frames.
+  const Spectrogram c = diffray::dsp::spectrogramPeaks(x.data(), 5000, 44100.0, 512, 128, (a.frames() + 2) / 3);
+  ASSERT_EQ(c.frames(), (a.frames() + 2) / 3);
+  EXPECT_EQ(c.hop, 3 * 128);
+  for (int r = 0; r < c.frames(); ++r)
+    for (int k = 0; k < c.bins(); k += 17) {
+      float m = a.at(3 * r, k);
+      for (int i = 3 * r + 1; i < std::min(3 * r + 3, a.frames()); ++i) m = std::max(m, a.at(i, k));
+      EXPECT_EQ(c.at(r, k), m) << "row " << r << ", bin " << k;
+    }
 }
 
 TEST(Spectrogram, RefusesBadArguments) {

@@ -99,6 +99,18 @@ AudioBuffer readAudio(const std::string& path) {
   return out;
 }
 
+void requireWavFits(const std::string& field, double frames, int channels, double sample_rate_hz) {
+  const double bytes = frames * channels * sizeof(float);
+  if (!(bytes <= kMaxWavDataBytes)) {
+    const double max_s = std::floor(kMaxWavDataBytes / (channels * sizeof(float))) / sample_rate_hz;
+    std::ostringstream what;
+    what << "the output would hold " << frames << " frames x " << channels << " channel(s) = " << bytes / 1e9
+         << " GB of float32, beyond a WAV file's 4 GiB limit (at most " << max_s << " s at " << sample_rate_hz
+         << " Hz)";
+    throw core::InputError(field, what.str());
+  }
+}
+
 void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
   // Everything is checked before a byte is written.
   if (audio.channels < 1 || audio.channels > 1024)

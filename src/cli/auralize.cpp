@@ -6,7 +6,8 @@
 // to the dry signal's rate (dsp::resampleImpulseResponse: libsamplerate's best sinc, scaled so the filter's
 // frequency response is kept) with one info line on stdout; the IR is short, so memory stays bounded and the
 // input still streams. --no-resample refuses a mismatch with one error line instead.
-// --gain scales by 10^(DB/20). --normalize takes two passes through a temporary file: the unscaled result
+// --gain scales by 10^(DB/20), |DB| ≤ 120 (checked when parsing, as door's). An output beyond one WAV file's
+// 4 GiB (audio::requireWavFits) is refused before the convolution. --normalize takes two passes through a temporary file: the unscaled result
 // is written to OUT.wav.unscaled.tmp.PID (float32, so nothing is lost) while its peak is measured, then read
 // back, scaled so the peak sits at −1 dBFS (then --gain on top) and written to OUT.wav; the temporary is
 // removed whatever happens. Outputs appear whole or not at all (audio::WavWriter).
@@ -149,7 +150,9 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output");
   sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)");
   sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)");
-  sub->add_option("--gain", o->gain_db, "gain in dB applied to the output")->capture_default_str();
+  sub->add_option("--gain", o->gain_db, "gain in dB applied to the output (-120 - 120)")
+      ->check(gainDbValidator())
+      ->capture_default_str();
   sub->add_flag("--normalize", o->normalize,
                 "scale the output's peak to -1 dBFS (two passes through a temporary file; --gain applies on top)");
   sub->add_flag("--no-resample", o->no_resample,
@@ -157,15 +160,18 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   sub->add_flag("--play", o->play, "play the result in real time on an audio device (PortAudio)");
   sub->add_option("--device", o->playback.device, "with --play: output device, by index or name substring "
                                                    "(default: the system's default output)");
-  sub->add_option("--block", o->playback.block_frames,
-                  "with --play: audio block in frames (the latency: block / sample rate)")->capture_default_str();
+  CLI::Option* block = sub->add_option("--block", o->playback.block_frames,
+                                       "with --play: audio block in frames, 16 - 16384 (the latency: block / "
+                                       "sample rate)")->capture_default_str();
   sub->add_flag("--list-devices", o->list_devices, "list the audio output devices and exit");
-  return [o]() {
+  return [o, block]() {
     if (o->list_devices) return listAudioDevices();
     if (o->ir.empty()) throw core::InputError("auralize", "--ir IR.wav is required");
     if (o->in.empty()) throw core::InputError("auralize", "--in DRY.wav is required");
     if (o->out.empty() && !o->play) throw core::InputError("auralize", "give -o WET.wav, --play, or both");
     if (!o->play && !o->playback.device.empty()) throw core::InputError("--device", "only applies with --play");
+    if (!o->play && block->count() > 0) throw core::InputError("--block", "only applies with --play");
+    if (o->play) requireBlockFrames(o->playback.block_frames);  // before -o is written, not after
     o->playback.ir = o->ir;
     o->playback.in = o->in;
     o->playback.gain_db = o->gain_db;
@@ -178,17 +184,19 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     const audio::AudioBuffer ir = audio::readAudio(o->ir);
     const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample);
     const long ir_frames = static_cast<long>(ir_channels.front().size());
-    const int block = blockFor(ir_frames);
+    const int fft_block = blockFor(ir_frames);
     dsp::MultichannelConvolver conv;
-    conv.init(block, ir_channels, dry.channels());
+    conv.init(fft_block, ir_channels, dry.channels());
     const int rate = static_cast<int>(dry.sampleRateHz());
+    audio::requireWavFits(o->out, static_cast<double>(dry.frames()) + static_cast<double>(ir_frames) - 1.0,
+                          conv.outputChannels(), rate);
     const double gain = std::pow(10.0, o->gain_db / 20.0);
     double peak = 0.0;
     double applied_db = o->gain_db;
     long frames = 0;
     if (!o->normalize) {
       audio::WavWriter writer(o->out, rate, conv.outputChannels());
-      peak = convolveInto(dry, conv, block, static_cast<float>(gain), writer);
+      peak = convolveInto(dry, conv, fft_block, static_cast<float>(gain), writer);
       frames = writer.framesWritten();
       writer.commit();
     } else {
@@ -196,7 +204,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
       double raw_peak = 0.0;
       {
         audio::WavWriter pass1(unscaled.path, rate, conv.outputChannels());
-        raw_peak = convolveInto(dry, conv, block, 1.0f, pass1);
+        raw_peak = convolveInto(dry, conv, fft_block, 1.0f, pass1);
         pass1.commit();
       }
       const double scale = raw_peak > 0.0 ? std::pow(10.0, kNormalizedPeakDbfs / 20.0) / raw_peak * gain : gain;

@@ -56,10 +56,15 @@ void requireOutputDevice(const std::string& device) {
   session.chooseOutputDevice(device);
 }
 
+void requireBlockFrames(int block_frames) {
+  if (block_frames < kMinBlockFrames || block_frames > kMaxBlockFrames)
+    throw core::InputError("--block", "must lie between " + std::to_string(kMinBlockFrames) + " and " +
+                                          std::to_string(kMaxBlockFrames) + " frames, got " + std::to_string(block_frames));
+}
+
 int playAuralization(const PlayOptions& o) {
   core::requireFinite("--gain", o.gain_db);
-  if (o.block_frames < 16 || o.block_frames > 16384)
-    throw core::InputError("--block", "must lie between 16 and 16384 frames, got " + std::to_string(o.block_frames));
+  requireBlockFrames(o.block_frames);
   audio::AudioReader dry(o.in);
   const audio::AudioBuffer ir = audio::readAudio(o.ir);
   const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);

@@ -27,6 +27,19 @@ const CLI::Validator& seedValidator() {
   return check;
 }
 
+const CLI::Validator& gainDbValidator() {
+  static const CLI::Validator check(
+      [](const std::string& text) -> std::string {
+        double gain_db = 0.0;
+        if (!CLI::detail::lexical_cast(text, gain_db) || !std::isfinite(gain_db) || std::abs(gain_db) > kMaxGainDb)
+          return "must be a number of dB between -" + std::to_string(static_cast<int>(kMaxGainDb)) + " and " +
+                 std::to_string(static_cast<int>(kMaxGainDb)) + ", got " + text;
+        return {};
+      },
+      "DB", "gain");
+  return check;
+}
+
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help) {
   sub->add_option_function<double>(
          "--rays",

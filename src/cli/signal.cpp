@@ -6,7 +6,9 @@
 //    samples (1: a single sample; more: a Hann window);
 //  * speech: --text spoken by Debian's espeak-ng (--voice, --speed in words per minute), resampled to --rate;
 //    its natural length unless --duration pads it with silence or cuts it.
-// --level is the peak in dBFS (default −6). Options of another kind are refused rather than ignored.
+// --level is the peak in dBFS (default −6), for any click width. Options of another kind are refused rather
+// than ignored; a signal longer than one WAV file holds (4 GiB of float32, audio::requireWavFits) is refused
+// before it is made.
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -57,6 +59,15 @@ void checkOptions(const SignalOptions& o, const std::vector<KindOption>& specifi
   core::requireFinite("--level", o.level_dbfs);
   if (o.level_dbfs > 0.0) throw core::InputError("--level", "the peak cannot exceed 0 dBFS");
   checkOutputFile(o.out, ".wav");
+  // The length is known before anything is made (speech: only when --duration is given): refuse a signal
+  // one WAV cannot hold before it takes gigabytes of memory.
+  const double duration_s = duration->count() > 0 ? o.duration_s
+                            : o.kind == "sweep"    ? o.sweep.duration_s
+                            : o.kind == "clicks"   ? o.clicks.duration_s
+                                                   : 0.0;
+  if (duration_s > 0.0)
+    audio::requireWavFits(duration->count() > 0 ? "--duration" : "--rate", std::round(duration_s * o.rate_hz), 1,
+                          o.rate_hz);
 }
 
 std::vector<float> generate(SignalOptions& o, bool duration_given) {
@@ -114,6 +125,7 @@ Runner addSignalCommand(CLI::App& app, CommonOptions& /*common*/) {
   return [o, specific, duration]() {
     checkOptions(*o, specific, duration);
     const std::vector<float> x = generate(*o, duration->count() > 0);
+    audio::requireWavFits("--text", static_cast<double>(x.size()), 1, o->rate_hz);  // speech of its own length
     audio::WavWriter writer(o->out, o->rate_hz, 1);
     writer.write(x.data(), static_cast<long>(x.size()));
     writer.commit();

@@ -23,14 +23,17 @@ struct SpectrogramOptions {
   std::string in;
   std::string out;
   int window = 2048;
-  int hop = 0;  ///< 0: window/4, raised for long inputs (kMaxAutoFrames)
+  int hop = 0;  ///< 0: window/4
   int channel = 0;  ///< 0: the mean of all channels
   double range_db = 90.0;
   std::string title;
   std::vector<std::string> marks;  ///< TIME[:LABEL]
 };
 
-constexpr long kMaxAutoFrames = 8000;  // ten times the plot's columns: finer hops would not show
+// Frames kept for the plot (ten times its columns): longer inputs keep, per bin, the loudest of each run
+// of frames (dsp::spectrogramPeaks), so memory stays at kMaxFrames × bins whatever the file's length while
+// the hop stays window/4 (a hop of more than the window would step over clicks at the Hann window's zeros).
+constexpr long kMaxFrames = 8000;
 
 void checkOutputPath(const SpectrogramOptions& o) {
   namespace fs = std::filesystem;
@@ -85,8 +88,8 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
   sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->required();
   sub->add_option("-o,--out", o->out, "output .png")->required();
   sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")->capture_default_str();
-  sub->add_option("--hop", o->hop, "frame step in samples (default: window/4, larger for long files so that "
-                                   "there are at most 8000 frames)");
+  sub->add_option("--hop", o->hop, "frame step in samples (default: window/4; long files keep the loudest of "
+                                   "each run of frames, at most 8000 runs)");
   sub->add_option("--channel", o->channel, "channel to analyse, from 1 (default: the mean of all channels)");
   sub->add_option("--range", o->range_db, "dB shown below the loudest pixel")->capture_default_str();
   sub->add_option("--title", o->title, "plot title (default: the file name)");
@@ -105,13 +108,8 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
                                               std::to_string(o->channel));
     const std::vector<float> x = readChannel(reader, o->channel - 1);
     const auto n = static_cast<long>(x.size());
-    int hop = o->hop;
-    if (hop == 0) {
-      hop = std::max(1, o->window / 4);
-      const long frames = n <= o->window ? 1 : 1 + (n - o->window + hop - 1) / hop;
-      if (frames > kMaxAutoFrames) hop = static_cast<int>((n + kMaxAutoFrames - 1) / kMaxAutoFrames);
-    }
-    const dsp::Spectrogram s = dsp::spectrogram(x.data(), n, reader.sampleRateHz(), o->window, hop);
+    const int hop = o->hop > 0 ? o->hop : std::max(1, o->window / 4);
+    const dsp::Spectrogram s = dsp::spectrogramPeaks(x.data(), n, reader.sampleRateHz(), o->window, hop, kMaxFrames);
     SpectrogramPlotOptions plot;
     plot.title = o->title.empty() ? std::filesystem::path(o->in).filename().string() +
                                         (o->channel > 0 ? ", channel " + std::to_string(o->channel) : std::string())
@@ -120,8 +118,10 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
     plot.markers = marks;
     plot.option = "-o";
     writeSpectrogramPlot(o->out, s, plot);
-    std::cout << "wrote " << o->out << ": " << s.frames() << " frames of " << o->window << " samples every "
-              << hop << " (" << n << " samples at " << reader.sampleRateHz() << " Hz)\n";
+    const long frames = dsp::frameCount(n, o->window, hop);
+    std::cout << "wrote " << o->out << ": " << frames << " frames of " << o->window << " samples every " << hop;
+    if (s.frames() < frames) std::cout << ", the loudest of each " << s.hop / hop << " kept";
+    std::cout << " (" << n << " samples at " << reader.sampleRateHz() << " Hz)\n";
     return 0;
   };
 }

@@ -33,9 +33,10 @@ Image reduce(const dsp::Spectrogram& s, double min_freq_hz) {
   im.columns = std::min(frames, kMaxColumns);
   const double per_column = static_cast<double>(frames) / im.columns;
   // Column c covers frames [c·F/C, (c+1)·F/C): its centre, in frame index, is (c + ½)·F/C − ½, and frame
-  // i's time is (i·hop + window/2)/fs, so the column times are evenly spaced.
+  // i's time is time_s[0] + i·hop/fs (time_s[0] = window/2/fs, or later for folded frames,
+  // dsp::spectrogramPeaks), so the column times are evenly spaced.
   im.dx_s = per_column * s.hop / s.sample_rate_hz;
-  im.x0_s = ((0.5 * per_column - 0.5) * s.hop + 0.5 * s.window) / s.sample_rate_hz;
+  im.x0_s = s.time_s.front() + (0.5 * per_column - 0.5) * s.hop / s.sample_rate_hz;
   const double lo = std::log10(min_freq_hz), hi = std::log10(0.5 * s.sample_rate_hz);
   im.dy = (hi - lo) / im.rows;
   im.y0 = lo + 0.5 * im.dy;

@@ -71,14 +71,20 @@ std::vector<float> clickTrain(const ClickSpec& spec) {
                                              " samples): the clicks would overlap");
   std::vector<float> x(static_cast<size_t>(n), 0.0f);
   const int w = spec.width_samples;
+  // Hann window of w samples, zero-free: sin²(π(j+1)/(w+1)). It reaches 1 in the middle for odd w only; for
+  // even w its two middle samples sit half a sample off the peak, so it is divided by its largest sample
+  // and every click's peak is `amplitude` whatever the width.
+  std::vector<double> shape(static_cast<size_t>(w), 1.0);
+  if (w > 1) {
+    for (int j = 0; j < w; ++j) shape[static_cast<size_t>(j)] = std::pow(std::sin(kPi * (j + 1) / (w + 1)), 2);
+    const double top = *std::max_element(shape.begin(), shape.end());
+    for (double& v : shape) v /= top;
+  }
   for (long k = 0;; ++k) {
     const long start = clickSample(spec, k);
     if (start >= n) break;
-    for (int j = 0; j < w && start + j < n; ++j) {
-      // Hann window of w samples, zero-free: sin²(π(j+1)/(w+1)) peaks at 1 in the middle for odd w.
-      const double s = w == 1 ? 1.0 : std::pow(std::sin(kPi * (j + 1) / (w + 1)), 2);
-      x[static_cast<size_t>(start + j)] = static_cast<float>(spec.amplitude * s);
-    }
+    for (int j = 0; j < w && start + j < n; ++j)
+      x[static_cast<size_t>(start + j)] = static_cast<float>(spec.amplitude * shape[static_cast<size_t>(j)]);
   }
   return x;
 }

@@ -45,7 +45,11 @@ struct RealFft {
 
 }  // namespace
 
-Spectrogram spectrogram(const float* x, long n, double fs_hz, int window, int hop) {
+namespace {
+
+/// Frames of `hop` folded by runs of `group` (≥ 1): row r holds, per bin, the loudest of frames
+/// [r·group, (r+1)·group), and its time is the mean of their centres.
+Spectrogram folded(const float* x, long n, double fs_hz, int window, int hop, long group) {
   const std::string where = "spectrogram";
   core::requirePositive(where + " sample rate", fs_hz);
   if (x == nullptr || n < 1) throw core::InputError(where, "the signal is empty");
@@ -57,17 +61,18 @@ Spectrogram spectrogram(const float* x, long n, double fs_hz, int window, int ho
                                       std::to_string(hop));
   for (long i = 0; i < n; ++i)
     if (!std::isfinite(x[i])) throw core::InputError(where, "sample " + std::to_string(i) + " is not finite");
-  const long frames = n <= window ? 1 : 1 + (n - window + hop - 1) / hop;
+  const long frames = frameCount(n, window, hop);
+  const long rows = (frames + group - 1) / group;
   const int bins = window / 2 + 1;
-  core::checkedCount(where + " (frames x bins)", static_cast<double>(frames) * bins, static_cast<double>(1 << 28));
+  core::checkedCount(where + " (frames x bins)", static_cast<double>(rows) * bins, static_cast<double>(1 << 28));
 
   Spectrogram s;
   s.sample_rate_hz = fs_hz;
   s.window = window;
-  s.hop = hop;
+  s.hop = static_cast<int>(std::min<long>(group * hop, 1L << 30));
   for (int k = 0; k < bins; ++k) s.freq_hz.push_back(k * fs_hz / window);
-  s.time_s.resize(static_cast<size_t>(frames));
-  s.magnitude_db.resize(static_cast<size_t>(frames) * static_cast<size_t>(bins));
+  s.time_s.resize(static_cast<size_t>(rows));
+  s.magnitude_db.assign(static_cast<size_t>(rows) * static_cast<size_t>(bins), static_cast<float>(Spectrogram::kFloorDb));
 
   std::vector<double> hann(static_cast<size_t>(window));
   for (int m = 0; m < window; ++m) hann[static_cast<size_t>(m)] = 0.5 * (1.0 - std::cos(2.0 * M_PI * m / window));
@@ -82,14 +87,32 @@ Spectrogram spectrogram(const float* x, long n, double fs_hz, int window, int ho
       fft.real[m] = t < n ? hann[static_cast<size_t>(m)] * x[t] : 0.0;
     }
     fftw_execute(fft.plan);
-    float* row = s.magnitude_db.data() + static_cast<size_t>(i) * static_cast<size_t>(bins);
+    const long r = i / group;
+    float* row = s.magnitude_db.data() + static_cast<size_t>(r) * static_cast<size_t>(bins);
     for (int k = 0; k < bins; ++k) {
       const double amplitude = std::hypot(fft.spectrum[k][0], fft.spectrum[k][1]) * amplitude_scale;
-      row[k] = static_cast<float>(20.0 * std::log10(std::max(amplitude, floor_amplitude)));
+      row[k] = std::max(row[k], static_cast<float>(20.0 * std::log10(std::max(amplitude, floor_amplitude))));
     }
-    s.time_s[static_cast<size_t>(i)] = (static_cast<double>(start) + 0.5 * window) / fs_hz;
+  }
+  for (long r = 0; r < rows; ++r) {
+    const long first = r * group, last = std::min(first + group, frames) - 1;
+    s.time_s[static_cast<size_t>(r)] = (0.5 * static_cast<double>(first + last) * hop + 0.5 * window) / fs_hz;
   }
   return s;
+}
+
+}  // namespace
+
+long frameCount(long n, int window, int hop) { return n <= window ? 1 : 1 + (n - window + hop - 1) / hop; }
+
+Spectrogram spectrogram(const float* x, long n, double fs_hz, int window, int hop) {
+  return folded(x, n, fs_hz, window, hop, 1);
+}
+
+Spectrogram spectrogramPeaks(const float* x, long n, double fs_hz, int window, int hop, long max_frames) {
+  if (max_frames < 1) throw core::InputError("spectrogram", "at least one frame must be kept");
+  const long frames = n >= 1 && window >= 1 && hop >= 1 ? frameCount(n, window, hop) : 1;
+  return folded(x, n, fs_hz, window, hop, (frames + max_frames - 1) / max_frames);
 }
 
 }  // namespace diffray::dsp

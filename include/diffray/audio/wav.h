@@ -33,6 +33,15 @@ AudioBuffer readAudio(const std::string& path);
 /// channel count libsndfile refuses, and when the file cannot be written.
 void writeWavFloat(const std::string& path, const AudioBuffer& audio);
 
+/// The largest float32 payload a WAV file holds: its RIFF and data chunk sizes are unsigned 32-bit fields,
+/// so frames·channels·4 bytes plus the header (a few dozen bytes; 1 KiB reserved) must stay below 4 GiB.
+/// (libsndfile writes no RF64 here; a larger plain WAV would carry wrapped sizes that readers refuse.)
+inline constexpr double kMaxWavDataBytes = 4294967295.0 - 1024.0;
+/// Throws core::InputError naming `field` when `frames` × `channels` float32 samples would not fit in one
+/// WAV file (kMaxWavDataBytes), with the length that would fit at `sample_rate_hz`. For a check before any
+/// work: `frames` is a double so that a product of options cannot overflow.
+void requireWavFits(const std::string& field, double frames, int channels, double sample_rate_hz);
+
 /// Reads an audio file (anything libsndfile reads) block by block, as float in [−1, 1) for integer formats.
 class AudioReader {
  public:

@@ -27,6 +27,13 @@ std::uint64_t wholeCount(const std::string& option, double v);
 /// The check every --seed option carries: digits only (a negative seed would wrap around in a std::uint64_t).
 const CLI::Validator& seedValidator();
 
+/// The largest output gain in dB, either way, a command accepts (door and auralize --gain): ±120 dB spans
+/// float32's useful range many times over; beyond it an output is all zeros or all overflow.
+inline constexpr double kMaxGainDb = 120.0;
+/// The check every --gain option carries, at parse time (before any work): a finite number of dB within
+/// ±kMaxGainDb.
+const CLI::Validator& gainDbValidator();
+
 /// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
 

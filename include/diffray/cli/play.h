@@ -25,6 +25,12 @@ struct PlayOptions {
 std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const std::string& ir_path,
                                          bool no_resample);
 
+/// The audio block (--block) playback accepts, in frames.
+inline constexpr int kMinBlockFrames = 16, kMaxBlockFrames = 16384;
+/// Throws core::InputError naming --block unless kMinBlockFrames ≤ block_frames ≤ kMaxBlockFrames: checked by
+/// playAuralization() and, before any file is written, by `auralize --play -o`.
+void requireBlockFrames(int block_frames);
+
 /// Prints the output devices (index, name, host API, channels, default rate, default latency) on stdout;
 /// returns the exit code (0).
 int listAudioDevices();

@@ -9,7 +9,8 @@
 //    without a click.
 //  * Click train: clicks start at t = 0 and every `interval_s` after, at sample round(k·interval_s·rate_hz)
 //    while inside the signal. A click of width 1 is one sample of value A; a width w > 1 is a Hann window of
-//    w samples, peak A at its middle (w odd) and starting at the click's sample.
+//    w samples, sin²(π(j+1)/(w+1)) for j = 0 … w−1, starting at the click's sample and scaled so its largest
+//    sample is A (the middle one for w odd, the two middle ones for w even).
 #include <vector>
 
 namespace diffray::dsp {

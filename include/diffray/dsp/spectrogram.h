@@ -35,4 +35,15 @@ struct Spectrogram {
 /// a result of more than 2^28 values.
 Spectrogram spectrogram(const float* x, long n, double fs_hz, int window, int hop);
 
+/// The number of frames spectrogram() makes: 1 + ceil((n − window)/hop), or 1 when n ≤ window.
+long frameCount(long n, int window, int hop);
+
+/// spectrogram() with its frames folded to at most `max_frames` (≥ 1) rows, for drawing long signals with
+/// bounded memory (max_frames × bins values, whatever n): row r holds, bin by bin, the loudest of the g
+/// consecutive frames [r·g, (r+1)·g), g = ceil(frameCount/max_frames), so a click in any one frame still
+/// shows; the result's `hop` is g·hop and row r's time the mean of its frames' centres (g = 1: exactly
+/// spectrogram()). Frames are still every `hop` samples, so with hop ≤ window/4 every sample lies where the
+/// Hann window is at least ½ in some frame. Same arguments and errors as spectrogram().
+Spectrogram spectrogramPeaks(const float* x, long n, double fs_hz, int window, int hop, long max_frames);
+
 }  // namespace diffray::dsp
