@@ -141,7 +141,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
                                   ->check(seedValidator());
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
-  sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(CLI::Range(-120.0, 120.0));
+  sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(gainDbValidator());
   sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)");
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
 
