@@ -133,7 +133,7 @@ TEST(Spectrogram, ClickAnywhereInALongSignalShowsInThePeaks) {
     EXPECT_GE(*loudest, expected_db) << "click at " << click;
     // The loudest row's time lies within its run of frames (g·hop samples) plus half a window of the click.
     const long row = (loudest - peaks.magnitude_db.begin()) / peaks.bins();
-    EXPECT_LE(std::abs(peaks.time_s[static_cast<size_t>(row)] - click / fs), (peaks.hop + 0.5 * window) / fs);
+    EXPECT_LE(std::abs(peaks.time_s[static_cast<size_t>(row)] - static_cast<double>(click) / fs), (peaks.hop + 0.5 * window) / fs);
     if (click % old_hop == 0) {
       const Spectrogram old = diffray::dsp::spectrogram(x.data(), n, fs, window, static_cast<int>(old_hop));
       EXPECT_EQ(*std::max_element(old.magnitude_db.begin(), old.magnitude_db.end()),
