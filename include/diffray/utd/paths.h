@@ -15,7 +15,9 @@
 // exact caustic distance along the edges when they are parallel (a thick wall, a doorway reveal; the form
 // of e.g. Tsingos et al., SIGGRAPH 2001, §3). An incident ray that grazes a face of the wedge (φ′ = 0 or
 // nπ, as between the two edges of a reveal) takes D/2 (Kouyoumjian & Pathak 1974: incident and reflected
-// waves merge there). Reflections: R·e^{−ikL}/L over the unfolded length L.
+// waves merge there). Reflections: R·e^{−ikL}/L over the unfolded length L; a source or listener within the
+// offset of a face's plane is on it (its image coincides with it: a rigid face doubles the field), the
+// offset then only lifting it for the visibility test.
 //
 // Face reflection coefficients: UtdOptions::face_reflection for every face (+1 rigid), or with
 // material_reflection √(1 − α) of the face's material in the band that holds the frequency. Air absorption
