@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "diffray/core/error.h"
 #include "diffray/utd/apex.h"
@@ -96,10 +98,21 @@ bool UtdModel::diffraction(int e, const Vec3& apex, const Vec3& from, const Vec3
 void UtdModel::addReflections(const Vec3& s, const Vec3& r, std::vector<Path>& out) const {
   const auto& planes = geometry_.planes();
   for (const auto& pl : planes) {
-    const double ds = pl.normal.dot(s) - pl.offset, dr = pl.normal.dot(r) - pl.offset;
-    if (!(ds * dr > 0.0) || std::abs(ds) < offset_m_ || std::abs(dr) < offset_m_) continue;
-    const Vec3 image = s - 2.0 * ds * pl.normal;
-    const Vec3 p = image + (r - image) * (ds / (ds + dr));
+    double ds = pl.normal.dot(s) - pl.offset, dr = pl.normal.dot(r) - pl.offset;
+    // A point within the offset of the plane is on it: its image coincides with it (on a rigid plane the
+    // field doubles there, the limit of the two paths as the height goes to 0). Only points farther than
+    // the offset on opposite sides have no reflection.
+    const bool s_on = std::abs(ds) < offset_m_, r_on = std::abs(dr) < offset_m_;
+    if (!s_on && !r_on && !(ds * dr > 0.0)) continue;
+    const double side = std::abs(ds) >= std::abs(dr) ? (ds >= 0.0 ? 1.0 : -1.0) : (dr >= 0.0 ? 1.0 : -1.0);
+    if (!s_on && side * ds < 0.0) continue;
+    if (!r_on && side * dr < 0.0) continue;
+    ds = side * std::max(side * ds, 0.0);  // a point a little behind the plane is taken as on it
+    dr = side * std::max(side * dr, 0.0);
+    const Vec3 s_c = s - (pl.normal.dot(s) - pl.offset - ds) * pl.normal;
+    const Vec3 r_c = r - (pl.normal.dot(r) - pl.offset - dr) * pl.normal;
+    const Vec3 image = s_c - 2.0 * ds * pl.normal;
+    const Vec3 p = ds + dr != 0.0 ? Vec3(image + (r_c - image) * (ds / (ds + dr))) : Vec3(0.5 * (s_c + r_c));
     int tri = -1;
     for (int t : pl.triangles) {
       if (opening_[room_.mesh.object_of_triangle[t]]) continue;
@@ -110,14 +123,18 @@ void UtdModel::addReflections(const Vec3& s, const Vec3& r, std::vector<Path>& o
       }
     }
     if (tri < 0) continue;
-    const Vec3 lifted = p + (ds > 0 ? offset_m_ : -offset_m_) * pl.normal;
-    if (!visible(s, lifted) || !visible(lifted, r)) continue;
+    // Visibility only: the reflection point and any point on the plane are lifted by the offset into the air.
+    const Vec3 lift = side * offset_m_ * pl.normal;
+    const Vec3 lifted = p + lift;
+    if (!visible(s_on ? Vec3(s_c - ds * pl.normal + lift) : s, lifted) ||
+        !visible(lifted, r_on ? Vec3(r_c - dr * pl.normal + lift) : r))
+      continue;
     Path path;
     path.kind = PathKind::Reflection;
     path.order = 1;
     path.triangle = tri;
     path.points = {s, p, r};
-    path.length_m = (r - image).norm();
+    path.length_m = (r_c - image).norm();
     out.push_back(std::move(path));
   }
 }
@@ -183,14 +200,22 @@ std::vector<Path> UtdModel::paths(const Vec3& source, const Vec3& listener) cons
   }
   if (options_.reflections) addReflections(source, listener, out);
   if (options_.max_order >= 1) addFirstOrder(source, listener, out);
-  // A listener on the incident shadow boundary of an edge (φ = φ′ + π): Embree's visibility of the direct
-  // ray grazing the edge is decided by float rounding, while the diffracted term takes the mean of its two
-  // sides (coefficient.h); the geometric field there is half of the free one, whatever the ray test said.
+  // A listener on a shadow boundary of an edge: the incident one (φ = φ′ ± π) or the reflection one of face 0
+  // (φ + φ′ = π) or face n (φ + φ′ = (2n − 1)π). Embree's visibility of the ray grazing the edge, and the
+  // triangle test of a reflection point on the edge, are decided by rounding, while the diffracted term
+  // takes the mean of its two sides (coefficient.h): the geometric field there is half of the full one,
+  // whatever the tests said (Kouyoumjian & Pathak 1974).
+  const double tol = 1e-9;
   bool on_boundary = false;
-  for (const Path& p : out)
-    if (p.kind == PathKind::Diffraction && p.order == 1 &&
-        std::abs(p.diffractions[0].phi_out - p.diffractions[0].phi_in - core::kPi) < 1e-9)
-      on_boundary = true;
+  std::vector<std::pair<int, int>> reflection_boundaries;  // (edge, face: 0 or 1 for face n)
+  for (const Path& p : out) {
+    if (p.kind != PathKind::Diffraction || p.order != 1) continue;
+    const Diffraction& d = p.diffractions[0];
+    if (std::abs(std::abs(d.phi_out - d.phi_in) - core::kPi) < tol) on_boundary = true;
+    const double sum = d.phi_out + d.phi_in, n = edges_[d.edge].wedge_n;
+    if (std::abs(sum - core::kPi) < tol) reflection_boundaries.push_back({d.edge, 0});
+    if (std::abs(sum - (2.0 * n - 1.0) * core::kPi) < tol) reflection_boundaries.push_back({d.edge, 1});
+  }
   if (on_boundary) {
     if (out.empty() || out[0].kind != PathKind::Direct) {
       Path direct;
@@ -200,8 +225,38 @@ std::vector<Path> UtdModel::paths(const Vec3& source, const Vec3& listener) cons
     }
     out[0].gain = 0.5;
   }
+  if (options_.reflections)
+    for (const auto& [e, face] : reflection_boundaries) halveReflection(e, face, source, listener, out);
   if (options_.max_order >= 2) addSecondOrder(source, listener, out);
   return out;
+}
+
+void UtdModel::halveReflection(int e, int face, const Vec3& s, const Vec3& r, std::vector<Path>& out) const {
+  const Edge& edge = edges_[e];
+  const int face_tri = face == 0 ? edge.triangle0 : edge.trianglen;
+  const Vec3& normal = face == 0 ? edge.normal0 : edge.normaln;
+  if (face_tri < 0) return;
+  const int plane = geometry_.triangle(face_tri).plane;
+  for (Path& p : out) {
+    if (p.kind == PathKind::Reflection && geometry_.triangle(p.triangle).plane == plane) {
+      p.gain = 0.5;
+      return;
+    }
+  }
+  // The triangle test missed the reflection point, which lies on the edge: add the path, with the face's
+  // triangle for its material. The listener sees the image of s in the face plane through the edge.
+  const double ds = normal.dot(s - edge.start), dr = normal.dot(r - edge.start);
+  if (!(ds + dr > 0.0)) return;  // both on the face's plane: no distinct reflection
+  const Vec3 image = s - 2.0 * ds * normal;
+  const Vec3 q = image + (r - image) * (ds / (ds + dr));
+  Path path;
+  path.kind = PathKind::Reflection;
+  path.order = 1;
+  path.triangle = face_tri;
+  path.points = {s, q, r};
+  path.length_m = (r - image).norm();
+  path.gain = 0.5;
+  out.push_back(std::move(path));
 }
 
 std::complex<double> UtdModel::pressure(const Path& path, double freq_hz, double c_m_s) const {
@@ -211,7 +266,7 @@ std::complex<double> UtdModel::pressure(const Path& path, double freq_hz, double
   const cd phase = std::exp(cd(0.0, -k * path.length_m));
   if (path.kind == PathKind::Direct) return path.gain * phase / path.length_m;
   if (path.kind == PathKind::Reflection)
-    return faceReflection(room_.mesh.object_of_triangle[path.triangle], freq_hz) * phase / path.length_m;
+    return path.gain * faceReflection(room_.mesh.object_of_triangle[path.triangle], freq_hz) * phase / path.length_m;
   // Diffraction: (1/s′)·Π D_i·A_i·e^{−ik·length}, A_i = √(ρ_i/(s_i(ρ_i + s_i))), ρ_i the unfolded distance
   // from the source to apex i and s_i the leg after it (to the next apex or the listener).
   cd p = phase / (path.points[1] - path.points[0]).norm();

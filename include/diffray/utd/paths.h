@@ -15,7 +15,9 @@
 // exact caustic distance along the edges when they are parallel (a thick wall, a doorway reveal; the form
 // of e.g. Tsingos et al., SIGGRAPH 2001, §3). An incident ray that grazes a face of the wedge (φ′ = 0 or
 // nπ, as between the two edges of a reveal) takes D/2 (Kouyoumjian & Pathak 1974: incident and reflected
-// waves merge there). Reflections: R·e^{−ikL}/L over the unfolded length L.
+// waves merge there). Reflections: R·e^{−ikL}/L over the unfolded length L; a source or listener within the
+// offset of a face's plane is on it (its image coincides with it: a rigid face doubles the field), the
+// offset then only lifting it for the visibility test.
 //
 // Face reflection coefficients: UtdOptions::face_reflection for every face (+1 rigid), or with
 // material_reflection √(1 − α) of the face's material in the band that holds the frequency. Air absorption
@@ -61,7 +63,8 @@ struct Path {
   std::vector<core::Vec3> points;        ///< source, apexes or reflection point, listener
   double length_m = 0.0;
   /// Geometric paths: ½ when the listener lies on a shadow boundary of a first-order diffraction (within
-  /// 1e-9 rad), where the transition function takes the mean of its two sides; 1 otherwise.
+  /// 1e-9 rad), where the transition function takes the mean of its two sides: the incident boundary for
+  /// the direct path, a face's reflection boundary for the reflection off that face; 1 otherwise.
   double gain = 1.0;
   double delay(double c_m_s) const { return length_m / c_m_s; }
 };
@@ -104,6 +107,9 @@ class UtdModel {
   /// lies outside the air sector or along the edge.
   bool diffraction(int e, const core::Vec3& apex, const core::Vec3& from, const core::Vec3& to, double l_m,
                    Diffraction& d) const;
+  /// Gives the reflection off face `face` (0, or 1 for face n) of edge e gain ½, adding it when the
+  /// triangle test missed its reflection point on the edge (listener on that face's reflection boundary).
+  void halveReflection(int e, int face, const core::Vec3& s, const core::Vec3& r, std::vector<Path>& out) const;
   core::Vec3 offEdge(int e, const core::Vec3& apex) const;
 
   const room::Room& room_;
