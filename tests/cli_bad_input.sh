@@ -61,6 +61,16 @@ expect_error "x not increasing"       wdf profile --profile "$tmp/dup.csv"
 printf 'x,a,phi\n0,1,0\n1e-3,nan,0\n' >"$tmp/nan.csv"
 expect_error "NaN in a profile"       wdf profile --profile "$tmp/nan.csv"
 expect_error "wdf CSV to nowhere"     wdf slit --csv "$tmp/no/such/dir/w.csv"
+expect_error "negative wdf extent"    wdf half-plane --extent -1e-6
+expect_error "negative wdf u-range"   wdf slit --u-range -5
+# An absurd --u-range is clamped to 2/λ: the table builds at once instead of running for ever.
+if timeout 60 "$bin" wdf slit --u-range 1e10 --json >"$tmp/stdout" 2>"$tmp/stderr" &&
+   grep -q '"u0_per_m":-4000000' "$tmp/stdout"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: wdf slit --u-range 1e10 did not return promptly with the clamped range"; cat "$tmp/stderr"
+  fails=$((fails + 1))
+fi
 expect_error "missing IR file"        metrics "$tmp/none.wav"
 printf 'not audio\n' >"$tmp/text.wav"
 expect_error "text file named .wav"   metrics "$tmp/text.wav"

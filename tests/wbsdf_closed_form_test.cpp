@@ -104,6 +104,29 @@ TEST(OpeningsWdf, DoubleSlitMatchesDesignFormulaWithSignedMidAirTerm) {
   EXPECT_NEAR(slits->wdf(0.0, 0.0), 4.0 * a, 1e-12 * a);
 }
 
+// N equal slits (design.md §1 generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
+// c̄_jk the pair's midpoint. Checks the per-piece pruning of pairs (only pairs placed about x contribute).
+TEST(OpeningsWdf, ManySlitsMatchPairwiseDesignFormula) {
+  const double a = 1e-6, d = 2.3e-6;
+  const int n = 9;
+  const auto slits = dw::Openings::slits(n, a, d);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(-0.5 * (n * d + a), 0.5 * (n * d + a)), uu(-3.0 / a, 3.0 / a);
+  for (int i = 0; i < 2000; ++i) {
+    const double x = ux(rng), u = uu(rng);
+    double want = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double cj = (j - 0.5 * (n - 1)) * d;
+      want += rectWdf(x - cj, u, a);
+      for (int k = j + 1; k < n; ++k) {
+        const double ck = (k - 0.5 * (n - 1)) * d;
+        want += 2.0 * std::cos(2.0 * kPi * u * (cj - ck)) * rectWdf(x - 0.5 * (cj + ck), u, a);
+      }
+    }
+    EXPECT_NEAR(slits->wdf(x, u), want, 1e-11 * a * n * n) << "x=" << x << " u=" << u;
+  }
+}
+
 TEST(OpeningsWdf, HalfPlaneMatchesStepFormula) {
   const double extent = 1e-3;
   const auto edge = dw::Openings::halfPlane(extent);

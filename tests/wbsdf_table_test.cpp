@@ -191,6 +191,22 @@ TEST(WbsdfTableSampling, PeriodicTableWrapsX) {
 // With a limit of nx·101 cells the table must fit (≤ the limit), stay symmetric (nu even, u' ∈ [−2/λ, 2/λ])
 // and keep every row's mass (the closed-form u-marginal above, 1e-6).
 // (This caught a bug: an odd max_cells/nx was rounded *up* to even, so the table overshot the limit.)
+// Shifts beyond 2/λ are evanescent for any incidence: a larger requested range is clamped, so an absurd
+// --u-range (1e10 /m) builds the default table instead of running for ever.
+TEST(WbsdfTableBuild, HugeURangeIsClampedToTwoOverLambda) {
+  const auto slit = dw::Openings::slit(2e-6);
+  dw::TableOptions o;
+  o.wavelength_m = 500e-9;
+  o.max_cells = 4'000'000;
+  o.coarsen_to_fit = true;
+  const auto reference = dw::WbsdfTable::build(*slit, o);
+  o.u_half_range_per_m = 1e10;
+  const auto clamped = dw::WbsdfTable::build(*slit, o);
+  EXPECT_DOUBLE_EQ(clamped->layout().u0_per_m, -2.0 / o.wavelength_m);
+  EXPECT_EQ(clamped->layout().nu, reference->layout().nu);
+  EXPECT_EQ(clamped->layout().nx, reference->layout().nx);
+}
+
 TEST(WbsdfTableBuild, CoarsenToFitStaysWithinTheCellLimit) {
   const double lambda = 1e-6, a = 10 * lambda;
   const auto slit = dw::Openings::slit(a);

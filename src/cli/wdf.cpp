@@ -1,6 +1,7 @@
 // `diffray wdf KIND`: tabulates the Wigner distribution (the WBSDF table) of a microstructure for one
 // wavelength, prints its size and how signed it is, and optionally writes every cell to CSV
 // (x, u', W) for plotting. KIND: slit, slits, half-plane, grating, or profile (a CSV file x,amplitude,phase).
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -32,6 +33,9 @@ struct WdfOptions {
 
 std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
   core::requirePositive("--wavelength", o.wavelength_m);
+  if (!(o.u_range_per_m >= 0.0)) throw core::InputError("--u-range", "must be >= 0 (0 = 2/λ)");
+  if (!(o.extent_m >= 0.0)) throw core::InputError("--extent", "must be > 0 (or 0 for 20 λ)");
+  const double u_max = o.u_range_per_m > 0 ? std::min(o.u_range_per_m, 2.0 / o.wavelength_m) : 2.0 / o.wavelength_m;
   wbsdf::TableOptions t;
   t.wavelength_m = o.wavelength_m;
   t.u_half_range_per_m = o.u_range_per_m;
@@ -43,7 +47,7 @@ std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
     if (!(o.cos_incidence >= 0.0 && o.cos_incidence <= 1.0))
       throw core::InputError("--cos-incidence", "must lie in [0, 1]");
     return wbsdf::roughSurfaceTable(
-        wbsdf::roughSurfaceWdf(o.sigma_h_m, o.corr_length_m, o.wavelength_m, o.cos_incidence, 4096, 2.0 / o.wavelength_m));
+        wbsdf::roughSurfaceWdf(o.sigma_h_m, o.corr_length_m, o.wavelength_m, o.cos_incidence, 4096, u_max));
   }
   if (o.kind == "profile") {
     if (o.profile.empty()) throw core::InputError("--profile", "KIND profile needs --profile FILE.csv");
@@ -91,10 +95,14 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--count", o->count, "number of slits")->capture_default_str();
   sub->add_option("--period", o->period_m, "grating period (m)")->capture_default_str();
   sub->add_option("--modulation", o->modulation, "grating phase modulation m")->capture_default_str();
-  sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m; 0 = 20 λ)");
-  sub->add_option("--u-range", o->u_range_per_m, "half-range of tabulated u' (cycles/m; 0 = 2/λ)");
+  sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m, > 0; 0 = 20 λ)");
+  sub->add_option("--u-range", o->u_range_per_m,
+                  "half-range of tabulated u' (cycles/m; 0 = 2/λ; larger values are clamped to 2/λ, every "
+                  "larger shift being evanescent). Profiles always tabulate |u'| < 2/λ");
   sub->add_option("--profile", o->profile, "profile CSV file (KIND profile)");
-  sub->add_option("--csv", o->csv, "write every cell as x_m,u_per_m,w to this CSV file");
+  sub->add_option("--csv", o->csv,
+                  "write every cell as x_m,u_per_m,w to this CSV file (w = W; for a grating's line spectrum, "
+                  "the line weight divided by the line spacing)");
   sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
   sub->add_flag("--json", common.json, "print a JSON object instead of text");
   return [o, &common]() {

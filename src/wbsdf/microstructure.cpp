@@ -43,6 +43,21 @@ Openings::Openings(std::vector<std::pair<double, double>> intervals_m) : interva
         if (std::isfinite(b)) breakpoints_.push_back(b);
   std::sort(breakpoints_.begin(), breakpoints_.end());
   breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+  // Pair (j,k) is non-zero exactly for (p_j+p_k)/2 < x < (q_j+q_k)/2 (s_lo < s_hi above), and both ends
+  // are breakpoints (computed by the same expression), so a piece between consecutive breakpoints has a
+  // fixed set of pairs. For N evenly spaced slits a piece holds O(N) of the N² pairs.
+  const std::size_t n = intervals_.size(), pieces = breakpoints_.size() + 1;
+  active_begin_.assign(1, 0);
+  for (std::size_t i = 0; i < pieces; ++i) {
+    const double lower = i == 0 ? -kInf : breakpoints_[i - 1];
+    const double upper = i == pieces - 1 ? kInf : breakpoints_[i];
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        if (0.5 * (intervals_[j].first + intervals_[k].first) <= lower &&
+            0.5 * (intervals_[j].second + intervals_[k].second) >= upper)
+          active_pairs_.push_back(static_cast<std::uint32_t>(j * n + k));
+    active_begin_.push_back(active_pairs_.size());
+  }
 }
 
 std::shared_ptr<Openings> Openings::slit(double width_m, double centre_m) {
@@ -80,16 +95,22 @@ std::complex<double> Openings::transmittance(double x_m) const {
 }
 
 double Openings::wdf(double x, double u) const {
+  const auto piece = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x) - breakpoints_.begin();
+  return pieceWdf(static_cast<std::size_t>(piece), x, u);
+}
+
+double Openings::pieceWdf(std::size_t piece, double x, double u) const {
+  const std::size_t n = intervals_.size();
   double w = 0.0;
-  for (const auto& [pj, qj] : intervals_) {
-    for (const auto& [pk, qk] : intervals_) {
-      const double s_lo = std::max(2.0 * (pj - x), 2.0 * (x - qk));
-      const double s_hi = std::min(2.0 * (qj - x), 2.0 * (x - pk));
-      const double len = s_hi - s_lo;
-      if (!(len > 0.0)) continue;
-      const double centre = 0.5 * (s_lo + s_hi);
-      w += len * std::cos(2.0 * kPi * u * centre) * sinc(u * len);
-    }
+  for (std::size_t a = active_begin_[piece]; a < active_begin_[piece + 1]; ++a) {
+    const auto& [pj, qj] = intervals_[active_pairs_[a] / n];
+    const auto& [pk, qk] = intervals_[active_pairs_[a] % n];
+    const double s_lo = std::max(2.0 * (pj - x), 2.0 * (x - qk));
+    const double s_hi = std::min(2.0 * (qj - x), 2.0 * (x - pk));
+    const double len = s_hi - s_lo;
+    if (!(len > 0.0)) continue;  // x on the piece's boundary
+    const double centre = 0.5 * (s_lo + s_hi);
+    w += len * std::cos(2.0 * kPi * u * centre) * sinc(u * len);
   }
   return w;
 }
@@ -121,8 +142,10 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
       throw core::InputError("WBSDF table", "a cell spans more than 10^4 oscillations of W; narrow the u range "
                                             "(--u-range) or the wavelength-to-size ratio");
     const int panels = 1 + static_cast<int>(cycles);
-    total += width * core::integrate([&](double u) { return wdf(mid, u) * sinc(2.0 * u * width); }, u1, u2,
-                                     panels, 6);
+    const auto piece = static_cast<std::size_t>(
+        std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
+    total += width * core::integrate([&](double u) { return pieceWdf(piece, mid, u) * sinc(2.0 * u * width); },
+                                     u1, u2, panels, 6);
   }
   return total / (x2 - x1);
 }

@@ -149,18 +149,34 @@ namespace diffray::wbsdf {
 std::shared_ptr<const WbsdfTable> profileTable(const ProfilePoints& points, double wavelength_m,
                                                std::size_t max_cells) {
   core::requirePositive("--wavelength", wavelength_m);
-  // dx = λ/8: the numeric Wigner distribution then spans |u| < 2/λ, every shift that can leave a
-  // propagating ray; finer detail of t lies beyond that and is smoothed by the interpolation anyway.
-  const double dx = wavelength_m / 8.0;
+  if (points.x_m.size() < 2) throw core::InputError("profile", "needs at least 2 points");
+  // The discrete pseudo-Wigner repeats every 1/(2dx) in u and folds every component of t beyond 1/(4dx)
+  // back into the output (wigner_fft.h). The table keeps |u| < 2/λ, every shift that can leave a propagating
+  // ray. dx ≤ λ/32 puts the first fold at 16/λ, so only pairs of components summing to within 4/λ of a
+  // multiple of 32/λ can land there; half the smallest input spacing keeps the input's own detail (a phase
+  // grating with a sub-wavelength period, a sharp edge given by close points) resolved.
+  double min_spacing = points.x_m.back() - points.x_m.front();
+  for (std::size_t i = 1; i < points.x_m.size(); ++i)
+    min_spacing = std::min(min_spacing, points.x_m[i] - points.x_m[i - 1]);
+  const double dx = std::min(wavelength_m / 32.0, 0.5 * min_spacing);
+  const double u_keep = 2.0 / wavelength_m;
   const double samples = (points.x_m.back() - points.x_m.front()) / dx + 1.0;
-  // Untruncated lags need nu >= 2·samples; beyond the cell budget, shorter lags smooth W in u.
-  double nu = 2.0;
-  while (nu < 2.0 * samples && samples * nu * 2.0 <= static_cast<double>(max_cells)) nu *= 2.0;
-  if (nu < 64.0)
-    throw core::InputError("profile", "is too long for a Wigner table at this wavelength (" +
-                                          std::to_string(static_cast<long>(samples)) +
-                                          " samples at λ/8); use a shorter profile");
-  return WbsdfTable::fromWigner(wignerFFT(resampleProfile(points, dx), static_cast<int>(nu)));
+  const double budget = static_cast<double>(max_cells);
+  const auto too_long = [&]() {
+    return core::InputError("profile", "is too long for a Wigner table at this wavelength (" +
+                                           std::to_string(static_cast<long long>(samples)) + " samples at dx = " +
+                                           std::to_string(dx) + " m); use a shorter profile or coarser points");
+  };
+  if (!(samples * 64.0 <= 4.0 * budget)) throw too_long();
+  // Untruncated lags need nu ≥ 2·samples (and at least 64 columns for any profile, however short).
+  double nu = 64.0;
+  while (nu < 2.0 * samples) nu *= 2.0;
+  // Beyond the budget, shorter lags smooth W in u: at most max_cells stored cells (samples × kept columns)
+  // and 4·max_cells FFT inputs (samples × nu).
+  const auto kept = [&](double n) { return std::min(n, 2.0 * std::ceil(u_keep * 2.0 * n * dx)); };
+  while (nu > 64.0 && (samples * kept(nu) > budget || samples * nu > 4.0 * budget)) nu /= 2.0;
+  if (samples * kept(nu) > budget) throw too_long();
+  return WbsdfTable::fromWigner(wignerFFT(resampleProfile(points, dx), static_cast<int>(nu), u_keep));
 }
 
 }  // namespace diffray::wbsdf

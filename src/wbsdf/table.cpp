@@ -9,6 +9,10 @@
 
 namespace diffray::wbsdf {
 
+namespace {
+/// Upper bound on the u-quadrature panels of one table build (a few minutes of work on one core).
+constexpr double kMaxQuadraturePanels = 2e9;
+}  // namespace
 
 WbsdfTable::WbsdfTable(TableLayout layout, std::vector<double> masses, double truncated_mass)
     : layout_(layout), masses_(std::move(masses)), truncated_mass_(truncated_mass) {
@@ -50,7 +54,9 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   L.nx = core::checkedCount("WBSDF table rows", (x_hi - x_lo) / dx, max_cells);
   L.dx_m = (x_hi - x_lo) / L.nx;
 
-  const double half_range = o.u_half_range_per_m > 0 ? o.u_half_range_per_m : 2.0 / o.wavelength_m;
+  // Shifts beyond 2/λ are evanescent for every incidence (|u_i|, |u_o| ≤ 1/λ), so a wider range is clamped.
+  const double full_range = 2.0 / o.wavelength_m;
+  const double half_range = o.u_half_range_per_m > 0 ? std::min(o.u_half_range_per_m, full_range) : full_range;
   if (m.lineSpacing() > 0) {
     L.line_spectrum = true;
     L.du_per_m = m.lineSpacing();
@@ -74,6 +80,13 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
     throw core::InputError("WBSDF table", std::to_string(L.nx) + " x " + std::to_string(L.nu) +
                                               " cells exceed the limit of " + std::to_string(o.max_cells) +
                                               "; narrow the u range or coarsen the resolution");
+  // Quadrature work: every cell takes ≥ 1 panel plus one per oscillation of W across it (cellMass), and the
+  // lag, which sets the oscillation rate, is bounded by about twice the coherence length.
+  const double panels = static_cast<double>(cells) + L.nx * 4.0 * half_range * m.coherenceLength();
+  if (!(panels <= kMaxQuadraturePanels))
+    throw core::InputError("WBSDF table", "needs about " + std::to_string(panels) +
+                                              " quadrature panels, more than the limit of " +
+                                              std::to_string(kMaxQuadraturePanels) + "; narrow the u range");
   std::vector<double> masses(cells);
   std::vector<double> row_total(L.nx);
   tbb::parallel_for(0, L.nx, [&](int j) {

@@ -51,7 +51,7 @@ class FftwForwardPlan {
   fftw_plan plan_ = nullptr;
 };
 
-void validateProfile(const SampledProfile& profile, int nu) {
+void validateProfile(const SampledProfile& profile, int nu, int kept) {
   const std::string where = "wignerFFT";
   if (profile.t.empty()) throw core::InputError(where, "the sampled profile is empty");
   core::requireFinite(where + ": profile x0_m", profile.x0_m);
@@ -59,9 +59,9 @@ void validateProfile(const SampledProfile& profile, int nu) {
   if (nu < 2 || nu % 2 != 0) {
     throw core::InputError(where, "nu must be even and >= 2, got " + std::to_string(nu));
   }
-  if (static_cast<double>(profile.t.size()) * nu > kMaxGridValues) {
+  if (static_cast<double>(profile.t.size()) * kept > kMaxGridValues) {
     std::ostringstream s;
-    s << profile.t.size() << " rows x " << nu << " columns exceeds the limit of " << kMaxGridValues
+    s << profile.t.size() << " rows x " << kept << " columns exceeds the limit of " << kMaxGridValues
       << " values";
     throw core::InputError(where, s.str());
   }
@@ -88,22 +88,27 @@ void forwardFFT(std::vector<std::complex<double>>& data) {
   std::copy(plan.data(), plan.data() + n, data.begin());
 }
 
-WignerGrid wignerFFT(const SampledProfile& profile, int nu) {
-  validateProfile(profile, nu);
-  const auto& t = profile.t;
-  const int nx = static_cast<int>(t.size());
+WignerGrid wignerFFT(const SampledProfile& profile, int nu, double u_keep_per_m) {
+  if (!(u_keep_per_m >= 0.0)) throw core::InputError("wignerFFT", "u_keep_per_m must be >= 0");
   const int half = nu / 2;
   const double dx_m = profile.dx_m;
+  // Lag x' = 2m·dx, so the FFT over m (length nu) has frequency step 1/(2·nu·dx) (eq:R_WDF).
+  const double du_per_m = dx_m > 0 && nu >= 2 ? 1.0 / (2.0 * nu * dx_m) : 1.0;
+  // Columns kept: k = −keep … keep−1 (all nu when u_keep is 0 or reaches the period's edge).
+  const int keep = u_keep_per_m > 0.0 ? static_cast<int>(std::min<double>(half, std::ceil(u_keep_per_m / du_per_m)))
+                                      : half;
+  validateProfile(profile, nu, 2 * keep);
+  const auto& t = profile.t;
+  const int nx = static_cast<int>(t.size());
 
   WignerGrid grid;
   grid.x0_m = profile.x0_m;
   grid.dx_m = dx_m;
   grid.nx = nx;
-  grid.nu = nu;
-  // Lag x' = 2m·dx, so the FFT over m (length nu) has frequency step 1/(2·nu·dx) (eq:R_WDF).
-  grid.du_per_m = 1.0 / (2.0 * nu * dx_m);
-  grid.u0_per_m = -half * grid.du_per_m;
-  grid.values.assign(static_cast<size_t>(nx) * static_cast<size_t>(nu), 0.0);
+  grid.nu = 2 * keep;
+  grid.du_per_m = du_per_m;
+  grid.u0_per_m = -keep * grid.du_per_m;
+  grid.values.assign(static_cast<size_t>(nx) * static_cast<size_t>(grid.nu), 0.0);
 
   FftwForwardPlan plan(nu);  // one plan, reused for every row
   std::complex<double>* kernel = plan.data();
@@ -123,10 +128,10 @@ WignerGrid wignerFFT(const SampledProfile& profile, int nu) {
       }
     }
     plan.execute();  // kernel[b] ← Σ_m J_m e^{−2πi·b·m/nu} = Σ_m J_m e^{−i4π·u_b·m·dx}
-    double* row = grid.values.data() + static_cast<size_t>(j) * static_cast<size_t>(nu);
-    for (int c = 0; c < nu; ++c) {
-      // Column c holds u = (c − half)·du, i.e. FFT bin (c − half) mod nu = (c + half) mod nu.
-      const std::complex<double> w = 2.0 * dx_m * kernel[(c + half) % nu];
+    double* row = grid.values.data() + static_cast<size_t>(j) * static_cast<size_t>(grid.nu);
+    for (int c = 0; c < grid.nu; ++c) {
+      // Column c holds u = (c − keep)·du, i.e. FFT bin (c − keep) mod nu.
+      const std::complex<double> w = 2.0 * dx_m * kernel[(c - keep + nu) % nu];
       row[c] = w.real();
       grid.max_abs_imag = std::max(grid.max_abs_imag, std::abs(w.imag()));
     }

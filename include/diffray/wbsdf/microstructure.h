@@ -4,6 +4,7 @@
 // eq:R_WDF; u in cycles per metre). A Microstructure knows how to integrate its own W over a table cell,
 // which is what WbsdfTable stores. Immutable after construction; all methods are thread-safe.
 #include <complex>
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -58,8 +59,15 @@ class Openings : public Microstructure {
  private:
   /// Bound on |s| (the lag) at x: sets the u quadrature density.
   double lagBound(double x_m) const;
+  /// W at x from the pairs active in `piece` (see active_pairs_); x must lie in that piece.
+  double pieceWdf(std::size_t piece, double x_m, double u_per_m) const;
   std::vector<std::pair<double, double>> intervals_;
   std::vector<double> breakpoints_;  ///< x where some pair's lag limits change slope (sorted)
+  /// Pairs (j·n + k) whose cross term is non-zero somewhere in each piece between breakpoints: piece i
+  /// (0 … breakpoints_.size()) lies below breakpoints_[i] (and above breakpoints_[i−1]); its pairs are
+  /// active_pairs_[active_begin_[i] … active_begin_[i+1]), in (j,k) order so sums stay bit-identical.
+  std::vector<std::uint32_t> active_pairs_;
+  std::vector<std::size_t> active_begin_;
   bool half_plane_ = false;
   double half_plane_extent_ = 0.0;
 };

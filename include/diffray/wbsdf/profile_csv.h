@@ -45,10 +45,14 @@ SampledProfile resampleProfile(const ProfilePoints& points, double dx_m);
 
 namespace diffray::wbsdf {
 
-/// The WBSDF table of a profile for wavelength λ: resampled at dx = min(λ/8, half the smallest input
-/// spacing) so the numeric Wigner distribution covers |u| < 2/λ without aliasing (wigner_fft.h), with
-/// enough columns (≥ 2 × samples) that no lag is truncated. Throws core::InputError when the table would
-/// exceed `max_cells`.
+/// The WBSDF table of a profile for wavelength λ, the columns |u'| < 2/λ only (every shift that can leave a
+/// propagating ray). t is resampled at dx = min(λ/32, half the smallest input spacing): the discrete
+/// pseudo-Wigner's first fold then lies at 1/(2dx) ≥ 16/λ, so components of t up to 14/λ, and every pair
+/// of components whose mean frequency is within 2/λ of the kept band, land where they belong (wigner_fft.h).
+/// A residual alias remains for t that is not band-limited (a sharp edge: at most |T(u+1/(2dx))|² ≤
+/// (dx/cos(π/16))² per unit u in the x-integral). The FFT has nu = max(64, the power of 2 ≥ 2 × samples)
+/// lags (none truncated) unless the table would exceed `max_cells` stored cells or 4·max_cells FFT inputs;
+/// then nu is halved (W smoothed in u) down to 64, and beyond that core::InputError ("too long").
 std::shared_ptr<const WbsdfTable> profileTable(const ProfilePoints& points, double wavelength_m,
                                                std::size_t max_cells = 40'000'000);
 

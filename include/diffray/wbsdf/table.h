@@ -33,7 +33,7 @@ struct TableLayout {
 struct TableOptions {
   double wavelength_m = 0.0;
   /// Half-range of tabulated shifts u'. 0 → 2/λ (every shift that can leave a propagating ray for any
-  /// incidence). A smaller range (for near-normal incidence and small screens) saves memory; the mass
+  /// incidence); larger values are clamped to 2/λ. A smaller range (for near-normal incidence and small screens) saves memory; the mass
   /// outside it is reported by truncatedMass().
   double u_half_range_per_m = 0.0;
   int cells_per_coherence = 32;  ///< du = 1/(this · coherence length)

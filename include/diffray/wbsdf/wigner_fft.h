@@ -45,10 +45,12 @@ struct WignerGrid {
   double uAt(int k) const { return u0_per_m + k * du_per_m; }
 };
 
-/// The discrete pseudo-Wigner distribution of `profile` (see the header comment) on nu columns.
+/// The discrete pseudo-Wigner distribution of `profile` (see the header comment) with an FFT of nu lags.
+/// u_keep_per_m = 0 returns all nu columns; u_keep > 0 returns only the 2·K columns k = −K … K−1,
+/// K = min(nu/2, ⌈u_keep/du⌉), i.e. every u_k with |u_k| < u_keep (and the grid's nu is 2K).
 /// nu must be even and ≥ 2; the profile needs ≥ 1 sample, finite x0, dx > 0, finite values.
 /// Throws core::InputError otherwise.
-WignerGrid wignerFFT(const SampledProfile& profile, int nu);
+WignerGrid wignerFFT(const SampledProfile& profile, int nu, double u_keep_per_m = 0.0);
 
 /// Samples t at x_j = x0 + j·dx for every x_j ≤ x1 (up to a 1e-9·dx tolerance), j ≥ 0.
 /// Throws core::InputError for non-finite bounds, x1 ≤ x0, dx ≤ 0, or a non-finite t(x).
