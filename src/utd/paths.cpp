@@ -16,6 +16,18 @@ using cd = std::complex<double>;
 
 namespace {
 
+// A first-order specular path s → p → r off triangle `tri`, unfolded length `length_m`, amplitude `gain`.
+Path reflectionPath(int tri, const Vec3& s, const Vec3& p, const Vec3& r, double length_m, double gain) {
+  Path path;
+  path.kind = PathKind::Reflection;
+  path.order = 1;
+  path.triangle = tri;
+  path.points = {s, p, r};
+  path.length_m = length_m;
+  path.gain = gain;
+  return path;
+}
+
 // A point-in-triangle test in the triangle's plane (barycentric, tolerance relative to its size).
 bool insideTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 n = (b - a).cross(c - a);
@@ -129,13 +141,7 @@ void UtdModel::addReflections(const Vec3& s, const Vec3& r, std::vector<Path>& o
     if (!visible(s_on ? Vec3(s_c - ds * pl.normal + lift) : s, lifted) ||
         !visible(lifted, r_on ? Vec3(r_c - dr * pl.normal + lift) : r))
       continue;
-    Path path;
-    path.kind = PathKind::Reflection;
-    path.order = 1;
-    path.triangle = tri;
-    path.points = {s, p, r};
-    path.length_m = (r_c - image).norm();
-    out.push_back(std::move(path));
+    out.push_back(reflectionPath(tri, s, p, r, (r_c - image).norm(), 1.0));
   }
 }
 
@@ -249,14 +255,7 @@ void UtdModel::halveReflection(int e, int face, const Vec3& s, const Vec3& r, st
   if (!(ds + dr > 0.0)) return;  // both on the face's plane: no distinct reflection
   const Vec3 image = s - 2.0 * ds * normal;
   const Vec3 q = image + (r - image) * (ds / (ds + dr));
-  Path path;
-  path.kind = PathKind::Reflection;
-  path.order = 1;
-  path.triangle = face_tri;
-  path.points = {s, q, r};
-  path.length_m = (r - image).norm();
-  path.gain = 0.5;
-  out.push_back(std::move(path));
+  out.push_back(reflectionPath(face_tri, s, q, r, (r - image).norm(), 0.5));
 }
 
 std::complex<double> UtdModel::pressure(const Path& path, double freq_hz, double c_m_s) const {
