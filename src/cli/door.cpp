@@ -173,8 +173,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     // The IRs are synthesized at the dry signal's rate when the room's bands fit below its Nyquist frequency,
     // else at the room's own rate and resampled (as filters) to the dry signal's; either way with the room
     // rate's gain (door::impulseResponseFor).
-    const bool fits = room.bands.upperHz(room.bands.size() - 1) < 0.5 * fs;
-    const double synth_fs = fits ? fs : room.output.sample_rate_hz;
+    const double synth_fs = door::synthesisRateHz(room.bands, room.output.sample_rate_hz, fs);
     checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
     // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
     const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);

@@ -113,20 +113,22 @@ std::vector<long> keyFrames(const std::vector<ClosingStep>& schedule, double sam
   std::vector<long> keys = frames(schedule);
   if (increasing(keys)) return keys;
   int fits = static_cast<int>(schedule.size()) - 1;
-  while (fits > 2 && !increasing(frames(closingSchedule(width_m, start_s, end_s, fits)))) --fits;
-  const std::string most = fits >= 2 && increasing(frames(closingSchedule(width_m, start_s, end_s, fits)))
-                               ? "at most " + std::to_string(fits) + " steps fit"
-                               : "not even 2 steps fit";
+  while (fits >= 2 && !increasing(frames(closingSchedule(width_m, start_s, end_s, fits)))) --fits;
+  const std::string most = fits >= 2 ? "at most " + std::to_string(fits) + " steps fit" : "not even 2 steps fit";
   throw core::InputError("--steps", std::to_string(schedule.size()) + " steps put two key times within one sample at " +
                                         std::to_string(static_cast<long>(sample_rate_hz)) + " Hz (the gaps halve): " +
                                         most + "; use fewer steps or a longer --close");
 }
 
+double synthesisRateHz(const core::Bands& bands, double room_hz, double signal_hz) {
+  return bands.upperHz(bands.size() - 1) < 0.5 * signal_hz ? signal_hz : room_hz;
+}
+
 std::vector<float> impulseResponseFor(const ir::EnergyResponse& response, double room_hz, double signal_hz,
                                       double length_s, double volume_m3, double speed_of_sound_m_s,
                                       std::uint64_t seed) {
-  const bool fits = response.bands.upperHz(response.bands.size() - 1) < 0.5 * signal_hz;
-  const double synth_hz = fits ? signal_hz : room_hz;
+  const double synth_hz = synthesisRateHz(response.bands, room_hz, signal_hz);
+  const bool fits = synth_hz == signal_hz;
   const std::vector<double> h =
       ir::synthesize(response, synth_hz, length_s, volume_m3, speed_of_sound_m_s, seed, ir::Phasing::Coherent);
   if (!fits) return dsp::resampleImpulseResponse(std::vector<float>(h.begin(), h.end()), 1, room_hz, signal_hz);

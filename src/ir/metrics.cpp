@@ -93,8 +93,8 @@ struct Truncation {
 //  5. new intervals, 5 per 10 dB of decay; 6. the noise from 5 dB of decay past the crosspoint (at
 //  least the last 10 %); 7. the late decay: a line from 25 to 5 dB above the noise; 8. a new crosspoint;
 //  repeat 5–8 until it moves by less than an interval (at most 10 times). The integral stops at the
-//  crosspoint (at the end, if the response ends first) and the line's exponential continuation (energy
-//  P(t_c)/k) stands in for what lies beyond.
+//  crosspoint and the line's exponential continuation (energy P(t_c)/k) stands in for what lies beyond;
+//  a response that ends first is integrated to its end and continued from the power it ends with.
 // A response whose last 10 % holds no energy has no noise: it is used whole.
 Truncation lundeby(const std::vector<double>& e, double bin_s) {
   const long n = static_cast<long>(e.size());
@@ -130,6 +130,9 @@ Truncation lundeby(const std::vector<double>& e, double bin_s) {
     if (settled) break;
   }
   if (!(tc > 0.0)) return none;
+  Truncation tr;
+  tr.truncated = true;
+  tr.tail_rate = -line.slope * std::log(10.0) / 10.0;
   if (tc >= t_end) {
     // The response ends before its decay meets the noise (cut short, with little or no noise): the
     // integral runs to the end and an exponential continuation stands in for the rest, as past a
@@ -138,22 +141,15 @@ Truncation lundeby(const std::vector<double>& e, double bin_s) {
     // last 10 % of the response actually holds (mean P̄ over Δ, at the decay line's rate k:
     // P(end) = P̄·kΔ/(e^{kΔ} − 1)), not from the line, which a sparse or double-sloped tail can sit far
     // above.
-    const double k = -line.slope * std::log(10.0) / 10.0;
     const long last = std::max(1L, n / 10);
-    const double span_s = edgeS(last, bin_s), k_span = k * span_s;
-    const double p_end = noise * (k_span > 1e-12 ? k_span / std::expm1(k_span) : 1.0);
-    Truncation tr;
+    const double k_span = tr.tail_rate * edgeS(last, bin_s);
+    const double p_end = meanPower(e, n - last, bin_s) * (k_span > 1e-12 ? k_span / std::expm1(k_span) : 1.0);
     tr.bins = n;
-    tr.tail_rate = k;
-    tr.tail = p_end / k;
-    tr.truncated = true;
+    tr.tail = p_end / tr.tail_rate;
     return tr;
   }
-  Truncation tr;
   tr.bins = std::max(1L, static_cast<long>(tc / bin_s));
-  tr.tail_rate = -line.slope * std::log(10.0) / 10.0;
   tr.tail = std::pow(10.0, (line.slope * edgeS(tr.bins, bin_s) + line.intercept) / 10.0) / tr.tail_rate;
-  tr.truncated = true;
   return tr;
 }
 

@@ -31,15 +31,6 @@ void parallelPoints(const Vec3& c, const std::vector<Vec3>& g, const Vec3& e, Co
     if (along > 1e-12 * scale) r.add(1.0);
     if (along < -1e-12 * scale) r.add(-1.0);
   };
-  if (m == 1) {  // a segment: parallel to e only if it crosses the line through 0 along e
-    const double a1 = c.dot(w1), a2 = c.dot(w2), d1 = g[0].dot(w1), d2 = g[0].dot(w2);
-    const double det_den = d1 * d1 + d2 * d2;
-    if (det_den <= 0.0) return;
-    const double s = -(a1 * d1 + a2 * d2) / det_den;
-    const Vec3 v = c + s * g[0];
-    if (std::abs(s) <= 1.0 && std::abs(v.dot(w1)) <= 1e-12 * scale && std::abs(v.dot(w2)) <= 1e-12 * scale) consider(v);
-    return;
-  }
   for (int i = 0; i < m; ++i)
     for (int j = i + 1; j < m; ++j) {
       const double a11 = g[i].dot(w1), a12 = g[j].dot(w1), a21 = g[i].dot(w2), a22 = g[j].dot(w2);
@@ -62,7 +53,7 @@ void parallelPoints(const Vec3& c, const std::vector<Vec3>& g, const Vec3& e, Co
 }  // namespace
 
 CosineRange cosineRange(const Vec3& c, const std::vector<Vec3>& g, const Vec3& e) {
-  DIFFRAY_CHECK(!g.empty() && g.size() <= 4);
+  DIFFRAY_CHECK(g.size() >= 2 && g.size() <= 4);
   CosineRange r;
   const auto full = [] {
     CosineRange all;

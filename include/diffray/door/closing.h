@@ -77,6 +77,10 @@ core::BandArray bandEnergies(const ir::EnergyResponse& response);
 std::vector<long> keyFrames(const std::vector<ClosingStep>& schedule, double sample_rate_hz, double width_m,
                             double start_s, double end_s);
 
+/// The rate impulseResponseFor synthesizes at: `signal_hz` when the bands fit below its Nyquist frequency,
+/// else `room_hz` (then resampled).
+double synthesisRateHz(const core::Bands& bands, double room_hz, double signal_hz);
+
 /// The impulse response of `response` to convolve with a signal at `signal_hz` (ir::synthesize, coherent
 /// phasing). It has the gain, as a filter, of the response synthesized at the room's rate `room_hz`, whatever
 /// `signal_hz` is: synthesized at `signal_hz` and scaled by √(room_hz / signal_hz) when the room's bands fit

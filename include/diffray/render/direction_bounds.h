@@ -3,7 +3,7 @@
 // an occluder's table (the largest change of direction cosine between light arriving at the occluder and
 // light leaving it for an object).
 //
-// The set is a parallelotope of vectors Z = {c + Σ_j s_j·g_j : |s_j| ≤ 1} (1 to 4 generators): the
+// The set is a parallelotope of vectors Z = {c + Σ_j s_j·g_j : |s_j| ≤ 1} (2 to 4 generators): the
 // differences p − h between a point p of one rectangle and a point h of another (or of one rectangle and a
 // fixed point). For a unit axis e, f(v) = v·e/|v| over Z is extreme either where v is parallel to ±e
 // (f = ±1, inside Z: found exactly from the vertices of the slice of Z by v·w₁ = v·w₂ = 0, w₁, w₂ ⟂ e, on
@@ -29,7 +29,7 @@ struct CosineRange {
   bool empty() const { return lo > hi; }
 };
 
-/// The range of v·e/|v| over Z = {c + Σ s_j·g_j : |s_j| ≤ 1}; e a unit vector, 1 ≤ g.size() ≤ 4.
+/// The range of v·e/|v| over Z = {c + Σ s_j·g_j : |s_j| ≤ 1}; e a unit vector, 2 ≤ g.size() ≤ 4.
 CosineRange cosineRange(const core::Vec3& c, const std::vector<core::Vec3>& g, const core::Vec3& e);
 
 }  // namespace diffray::render
