@@ -193,9 +193,12 @@ int main(int argc, char** argv) {
     if (which == "all" || which == "transport") benchTransport(8'000'000);
     if (which == "all" || which == "room") {
       // The shipped rooms, from the source folder (DIFFRAY_SOURCE_DIR) or the working directory.
+      // `diffray_bench room NAME [RAYS]` runs one of them (profiling).
+      const std::uint64_t rays = argc > 3 && which == "room" ? std::stoull(argv[3]) : 200'000;
       for (const char* name : {"shoebox", "l-hall", "two-rooms"}) {
+        if (argc > 2 && which == "room" && std::string(argv[2]) != name) continue;
         const std::string path = std::string(DIFFRAY_BENCH_ROOMS) + "/" + name + ".json";
-        bench::benchRoom(room::loadRoom(path), name, 200'000);
+        bench::benchRoom(room::loadRoom(path), name, rays);
       }
     }
     if (which == "all" || which == "convergence") {
