@@ -5,12 +5,15 @@
 // a span is the energy (J/m²) of that span, band by band:
 //  * Traced (diffuse) part: a Poisson sequence of Diracs with random signs and rate
 //    μ(t) = min(4πc³t²/V, 10⁴ s⁻¹) (the density of image sources at time t in a room of volume V). Per
-//    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter; the
-//    gains start at √(E_b(bin)/Diracs in its bin) and are corrected (six rounds, each a new filtering
-//    of the weighted Diracs) until Σ p_b² over a window of w_b bins around each bin equals the
-//    histogram's energy over that window; w_b spans 2 cycles of the band's bandwidth (w = 1, i.e. bin by
-//    bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz octaves at 1 ms). Why not bin
-//    by bin everywhere: a band of bandwidth B cannot hold an envelope finer than ~1/B. Why gains on the
+//    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter (the
+//    band part); the gains start at √(E_b(bin)/Diracs in its bin) and are corrected, all bands at once
+//    (six rounds, each a new filtering of the weighted Diracs), until band b of the whole response (W_b
+//    applied to the sum of the parts: what an octave analysis of the WAV, and the metrics, see) holds
+//    the histogram's energy over a window of w_b bins around each bin; w_b spans 2 cycles of the band's
+//    bandwidth (w = 1, i.e. bin by bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz
+//    octaves at 1 ms), and the last round's window is 8 w_b + 20 bins wide, which takes out the slow
+//    drift the narrow rounds leave. Why not bin by bin everywhere: a band of bandwidth B cannot hold an
+//    envelope finer than ~1/B. Why gains on the
 //    Diracs rather than on the filtered signal: the band part stays inside its filter's pass band, so no
 //    energy is modulated into the neighbouring bands (synthesis.cpp). Σ p_b² per window therefore matches
 //    to the convergence of the rounds, not to rounding. A bin holding energy in which the Poisson draw put
