@@ -238,7 +238,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       std::cout << "synthesized the impulse responses at " << synth_fs << " Hz (the room's bands reach past the dry "
                 << "signal's Nyquist frequency) and resampled them to its " << fs << " Hz (libsamplerate)\n";
     // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
-    const std::vector<float> first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), opts->out);
+    OutputFiles written;  // none left if a later one fails
+    std::vector<float> first;
+    written.write(opts->out, [&](const std::string& f) {
+      first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f);
+    });
     const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
                                                    kSpectrogramWindow, kSpectrogramHop);
     SpectrogramPlotOptions po;
@@ -246,7 +250,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
                room.listeners[chosen[0]].name;
     po.markers = {{start_s, "open"}, {end_s, "shut"}};
     po.option = "--spectrogram";
-    writeSpectrogramPlot(png, spec, po);
+    written.write(png, [&](const std::string& f) { writeSpectrogramPlot(f, spec, po); });
 
     nlohmann::ordered_json bands = nlohmann::ordered_json::array(), tl = nlohmann::ordered_json::array();
     for (int b = 0; b < room.bands.size(); ++b) {
@@ -278,9 +282,14 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
         {"threads", core::ThreadLimit::current()},
         {"steps", steps},
         {"warnings", all_warnings}};
-    core::writeFileAtomically(withExtension(opts->out, ".csv"), [&](std::ostream& out) { out << csv.str(); });
+    written.write(withExtension(opts->out, ".csv"), [&](const std::string& f) {
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << csv.str(); });
+    });
     side["timing_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    core::writeFileAtomically(withExtension(opts->out, ".json"), [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    });
+    written.keep();
     if (common.json) {
       std::cout << side.dump(2) << std::endl;
       return 0;

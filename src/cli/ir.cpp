@@ -208,16 +208,21 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"listeners", listeners},
         {"bands", listeners.at(0).at("bands")}};
 
-    // Outputs: each written whole or not at all; the plot first, the likelier to fail.
+    // Outputs: each written whole or not at all, and none left if a later one fails (OutputFiles); the
+    // plot first, the likelier to fail.
+    OutputFiles written;
     if (!opts->plot.empty()) {
       std::vector<std::string> names;
       for (const auto& li : room.listeners) names.push_back(li.name);
-      writeDecayPlot(opts->plot, names, sim.listeners);
+      written.write(opts->plot, [&](const std::string& f) { writeDecayPlot(f, names, sim.listeners); });
     }
-    audio::writeWavFloat(wav, buffer);
-    writeHistogramCsv(withExtension(wav, ".csv"), room, sim);
+    written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
+    written.write(withExtension(wav, ".csv"), [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    core::writeFileAtomically(withExtension(wav, ".json"), [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    written.write(withExtension(wav, ".json"), [&](const std::string& f) {
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+    });
+    written.keep();
     if (common.json) {
       std::cout << side.dump(2) << std::endl;
     } else {
