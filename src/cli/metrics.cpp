@@ -1,6 +1,7 @@
 // `diffray metrics IR.wav`: ISO 3382-1 room metrics per octave (or third-octave) band of any impulse
 // response libsndfile reads, measured ones included (the noise floor is found and cut off: ir/metrics.h).
 // Prints a table, or with --json {"file", "sample_rate_hz", "channels", "channel", "bands": {…}}.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -56,7 +57,11 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
                                               o->file + " has " + std::to_string(audio.channels) + " channel" +
                                               (audio.channels > 1 ? "s" : "") + "), got " + std::to_string(o->channel));
     const core::Bands bands = bandsFor(o->bands, audio.sample_rate_hz, o->file);
-    const auto metrics = ir::metricsFromSignal(audio.channel(o->channel - 1), audio.sample_rate_hz, bands);
+    const std::vector<double> signal = audio.channel(o->channel - 1);
+    if (std::all_of(signal.begin(), signal.end(), [](double v) { return v == 0.0; }))
+      throw core::InputError(o->file, "every sample of channel " + std::to_string(o->channel) +
+                                          " is zero: there is no response to measure");
+    const auto metrics = ir::metricsFromSignal(signal, audio.sample_rate_hz, bands);
     if (common.json) {
       nlohmann::ordered_json j{{"file", o->file},
                        {"sample_rate_hz", audio.sample_rate_hz},

@@ -114,16 +114,17 @@ double BandFilter::gain(int band, double freq_hz) const {
 double BandFilter::coveredLowHz() const { return std::pow(10.0, edge_log_.front() + half_log_.front()); }
 double BandFilter::coveredHighHz() const { return std::pow(10.0, edge_log_.back() - half_log_.back()); }
 
-int BandFilter::fftLengthFor(long samples) const {
+long BandFilter::ringSamples() const {
   double narrowest_hz = 1e300;
   for (size_t e = 0; e < edge_log_.size(); ++e)
     narrowest_hz = std::min(narrowest_hz, std::pow(10.0, edge_log_[e] + half_log_[e]) -
                                               std::pow(10.0, edge_log_[e] - half_log_[e]));
   // A raised-cosine crossover Δf wide gives filter tails that fall as 1/t³ beyond ~1/Δf: at 6/Δf they
   // are far below anything the metrics resolve.
-  const double pad = std::ceil(6.0 * fs_ / narrowest_hz);
-  return fastFftLength(samples + static_cast<long>(pad));
+  return static_cast<long>(std::ceil(6.0 * fs_ / narrowest_hz));
 }
+
+int BandFilter::fftLengthFor(long samples) const { return fastFftLength(samples + ringSamples()); }
 
 BandGains BandFilter::gains(int band, int fft_length) const {
   DIFFRAY_CHECK(band >= 0 && band < bands_.size() && fft_length >= 2);

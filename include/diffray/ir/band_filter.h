@@ -75,6 +75,9 @@ class BandFilter {
   /// FFT length for filtering `samples` samples: the input plus enough zeros for the filters' tails
   /// (6 / the narrowest crossover width in Hz), rounded up to a fast length.
   int fftLengthFor(long samples) const;
+  /// How far (samples) the filters ring on either side of an impulse: 6 / the narrowest crossover width in
+  /// Hz, beyond which their tails are negligible (what fftLengthFor pads with).
+  long ringSamples() const;
   BandGains gains(int band, int fft_length) const;
 
   /// Every band of x: out[b] has x's length.

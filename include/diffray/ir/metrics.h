@@ -12,7 +12,9 @@
 // sampled at bin edges) from the first time it reaches −5 (EDT: 0) dB to the first time it reaches −25,
 // −35 (EDT: −10) dB; C50, C80 = 10·log10(E(0)/E(t_e) − 1); D50 = 1 − E(50 ms)/E(0); Ts = ∫t p²/∫p² with t
 // from the onset. A figure is NaN when it cannot be measured: the usable decay (decay_range_db, above the
-// noise floor) does not reach the bottom of its fitting range, or nothing arrives after t_e.
+// noise floor) does not reach the bottom of its fitting range plus, when the decay meets a noise floor,
+// 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e. metricsFromSignal filters the signal with its
+// mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples).
 // Free functions, no state: thread-safe.
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -30,7 +32,7 @@ struct BandMetrics {
   double d50 = kNaN;                          ///< fraction, 0 … 1
   double ts = kNaN;                           ///< centre time, s after the onset
   /// How far (dB) the Schroeder curve falls before it ends or meets the noise floor: T20, T30 and EDT need
-  /// 25, 35 and 10 dB.
+  /// 25, 35 and 10 dB, and 10 dB more when it meets a noise floor.
   double decay_range_db = kNaN;
   /// Where the noise truncation stopped the integral, s after the onset (NaN: not truncated).
   double truncation_s = kNaN;
