@@ -80,6 +80,11 @@ expect_error "NaN in a WAV"           metrics "$tmp/nan.wav"
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00\x00\x00\xee\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok.wav"
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00\x00\x00\xee\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00' >"$tmp/silent.wav"
 expect_error "a silent WAV"           metrics "$tmp/silent.wav"
+# At 12 kHz the 4 kHz octave's filter (up to ~5.7 kHz) fits below the 6 kHz Nyquist frequency: it is kept.
+printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\xe0\x2e\x00\x00\x80\xbb\x00\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok12k.wav"
+if "$bin" metrics --json "$tmp/ok12k.wav" >"$tmp/stdout" 2>"$tmp/stderr" && grep -q '"4000"' "$tmp/stdout" &&
+   ! grep -q '"8000"' "$tmp/stdout"; then passes=$((passes + 1)); else
+  echo "FAIL: metrics: a 12 kHz file lost its 4 kHz octave (or kept 8 kHz)"; sed 's/^/    /' "$tmp/stdout" "$tmp/stderr"; fails=$((fails + 1)); fi
 expect_error "channel 0"              metrics "$tmp/ok.wav" --channel 0
 expect_error "channel past the last"  metrics "$tmp/ok.wav" --channel 2
 expect_error "unknown band kind"      metrics "$tmp/ok.wav" --bands fifth
