@@ -38,11 +38,12 @@ std::complex<double> transitionF(double x) {
 
 std::complex<double> cotTransition(double n, double kl, double eps) {
   const cd e1 = std::polar(1.0, 0.25 * core::kPi);
-  if (std::abs(eps) < 1e-10) {
-    // cot(ε/2n) ≈ 2n/ε, F(X) ≈ √(πX)e^{iπ/4} − 2iX with √X = √(2kL)|sin(ε/2)| ≈ √(kL/2)|ε| (KP 1974).
-    // |ε| <= 1e-13 is the boundary itself within the rounding of the angles: the mean of the two sides.
-    const double sgn = eps > 1e-13 ? 1.0 : (eps < -1e-13 ? -1.0 : 0.0);
-    return n * (std::sqrt(core::kTwoPi * kl) * sgn - 2.0 * kl * eps * e1) * e1;
+  if (std::abs(eps) <= kBoundaryTolRad) {
+    // On the boundary (within the tolerance paths.cpp halves the geometric field in): the mean of the two
+    // one-sided limits of cot(ε/2n)·F ≈ n[√(2πkL)·sgn ε − 2kLε e^{iπ/4}]e^{iπ/4} (KP 1974: cot(ε/2n) ≈ 2n/ε,
+    // F(X) ≈ √(πX)e^{iπ/4} − 2iX, √X ≈ √(kL/2)|ε|). The total field varies over ~1/√(kL) rad, so taking
+    // its boundary value this close costs ~√(kL)·1e-9 relative.
+    return n * (-2.0 * kl * eps * e1) * e1;
   }
   const double s = std::sin(0.5 * eps);
   return transitionF(2.0 * kl * s * s) / std::tan(eps / (2.0 * n));

@@ -211,7 +211,7 @@ std::vector<Path> UtdModel::paths(const Vec3& source, const Vec3& listener) cons
   // triangle test of a reflection point on the edge, are decided by rounding, while the diffracted term
   // takes the mean of its two sides (coefficient.h): the geometric field there is half of the full one,
   // whatever the tests said (Kouyoumjian & Pathak 1974).
-  const double tol = 1e-9;
+  const double tol = kBoundaryTolRad;
   bool on_boundary = false;
   std::vector<std::pair<int, int>> reflection_boundaries;  // (edge, face: 0 or 1 for face n)
   for (const Path& p : out) {

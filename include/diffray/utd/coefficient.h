@@ -19,10 +19,16 @@ std::complex<double> transitionF(double x);
 
 /// One of the four cot·F terms of D, written in terms of ε, the angular distance from its shadow or
 /// reflection boundary (ε = π ± β − 2πnN^±): cot(ε/(2n))·F(2kL·sin²(ε/2)). Finite through ε = 0, where
-/// the standard limit n[√(2πkL)·sgn ε − 2kLε e^{iπ/4}]e^{iπ/4} is used (|ε| < 1e-10). For |ε| <= 1e-13 (the
-/// boundary itself, within the rounding of the angles) sgn ε is taken as 0: the mean of the one-sided
-/// limits, which pairs with a geometric-optics field weighted ½ on the boundary. kl = k·L.
+/// the product is evaluated as it is for |ε| > kBoundaryTolRad; within it (the boundary itself, within the
+/// rounding of the angles) the mean of the one-sided limits n[±√(2πkL) − 2kLε e^{iπ/4}]e^{iπ/4}, which
+/// pairs with a geometric-optics field weighted ½ on the boundary (UtdModel::paths, the same tolerance).
+/// kl = k·L.
 std::complex<double> cotTransition(double n, double kl, double eps);
+
+/// How close (rad) to a shadow or reflection boundary counts as on it: the diffracted terms take their mean
+/// there and the geometric field is halved (paths.cpp). One tolerance for both, or the total field jumps by
+/// half the geometric one between them.
+inline constexpr double kBoundaryTolRad = 1e-9;
 
 /// Face reflection coefficients of the wedge: +1 rigid (acoustically hard, Neumann), −1 soft (Dirichlet).
 struct FaceReflection {
