@@ -8,6 +8,7 @@
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
+#include "diffray/core/memory.h"
 #include "diffray/render/light_tracer.h"
 
 namespace {
@@ -33,7 +34,7 @@ TEST(RenderMemory, RefusesWhatDoesNotFitInHalfTheMemory) {
   EXPECT_THROW(dr::checkRenderMemory(1000, 1000, 2, 270e6), InputError);
   EXPECT_NO_THROW(dr::checkRenderMemory(1000, 1000, 2, 273e6));
   EXPECT_NO_THROW(dr::checkRenderMemory(16384, 16384, 64, 0.0));  // unknown memory: not refused
-  EXPECT_GT(dr::physicalMemoryBytes(), 0.0);
+  EXPECT_GT(diffray::core::physicalMemoryBytes(), 0.0);
 }
 
 TEST(RenderMemory, SppCapInDouble) {

@@ -3,6 +3,7 @@
 // Prints a table, or with --json {"file", "sample_rate_hz", "channels", "channel", "bands": {…}}.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
 #include "diffray/core/error.h"
+#include "diffray/core/memory.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/ir/metrics.h"
 
@@ -42,6 +44,24 @@ core::Bands bandsFor(const std::string& kind, double sample_rate_hz, const std::
                                    " Hz) is too low for any " + kind + " band from 63 Hz");
 }
 
+/// Refuses up front a file whose analysis would need more than half the machine's memory: its samples
+/// (all channels), the analysed channel padded, one signal per band and the FFT buffers, in doubles.
+void checkAnalysisMemory(const std::string& file, const std::string& kind) {
+  const audio::AudioReader reader(file);
+  const double frames = static_cast<double>(reader.frames()), fs = reader.sampleRateHz();
+  const double bands = kind == "third" ? 24.0 : 8.0;
+  const double need = 8.0 * frames * (reader.channels() + bands + 6.0);
+  const double physical = core::physicalMemoryBytes();
+  if (physical > 0.0 && need > 0.5 * physical) {
+    char what[200];
+    std::snprintf(what, sizeof what,
+                  "is %.0f s long; analysing it needs about %.1f GB, more than half of this machine's %.1f GB: "
+                  "cut it to the impulse response",
+                  frames / fs, need / 1e9, physical / 1e9);
+    throw core::InputError(file, what);
+  }
+}
+
 }  // namespace
 
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
@@ -57,6 +77,7 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
       ->capture_default_str();
   sub->add_option("--channel", o->channel, "channel to analyse, from 1")->capture_default_str();
   return [o, &common]() {
+    checkAnalysisMemory(o->file, o->bands);
     const audio::AudioBuffer audio = audio::readAudio(o->file);
     if (o->channel < 1 || o->channel > audio.channels)
       throw core::InputError("--channel", "must lie between 1 and " + std::to_string(audio.channels) + " (" +

@@ -349,8 +349,8 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
            cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " + cell(m.decay_range_db, "%7.1f") + "\n";
   }
   if (missing)
-    out += "-: not measurable. T20, T30 and EDT need a decay of 25, 35 and 10 dB above the noise floor "
-           "(range dB); C50, C80 need energy after 50, 80 ms.\n";
+    out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
+           "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
   return out;
 }
 

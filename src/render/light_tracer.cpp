@@ -1,6 +1,5 @@
 #include "diffray/render/light_tracer.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include "diffray/color/cie1931.h"
 #include "diffray/color/wavelength.h"
 #include "diffray/core/error.h"
+#include "diffray/core/memory.h"
 #include "diffray/core/parallel.h"
 #include "diffray/transport/tracer.h"
 
@@ -252,11 +252,6 @@ double renderPeakBytes(int width, int height, int threads) {
   return pixels * (kAccumulatorBytesPerPixel * accumulators + 8.0 * std::max(1, threads));
 }
 
-double physicalMemoryBytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
-}
-
 void checkRenderMemory(int width, int height, int threads, double physical_bytes) {
   const double need = renderPeakBytes(width, height, threads);
   if (physical_bytes > 0 && need > 0.5 * physical_bytes) {
@@ -279,7 +274,7 @@ RenderResult renderLight(const PreparedScene& ps, const RenderOptions& options) 
   for (const Light& l : s.lights) cdf.push_back(total += l.power_w);
   const double photon_energy = total / static_cast<double>(options.photons);
   const int npix = ps.camera.width() * ps.camera.height();
-  checkRenderMemory(ps.camera.width(), ps.camera.height(), core::ThreadLimit::current(), physicalMemoryBytes());
+  checkRenderMemory(ps.camera.width(), ps.camera.height(), core::ThreadLimit::current(), core::physicalMemoryBytes());
 
   auto make = [&] {
     RenderResult r;

@@ -75,7 +75,7 @@ struct RenderResult {
 };
 
 /// Traces options.photons photons; first refuses (checkRenderMemory, with core::ThreadLimit::current() threads
-/// and physicalMemoryBytes()) a camera whose accumulators would not fit in memory.
+/// and core::physicalMemoryBytes()) a camera whose accumulators would not fit in memory.
 RenderResult renderLight(const PreparedScene& scene, const RenderOptions& options);
 
 /// `spp` photons per pixel on a width × height camera: spp × width × height, computed in double and refused
@@ -89,8 +89,6 @@ inline constexpr double kAccumulatorBytesPerPixel = 5 * sizeof(double);
 /// pixels × (kAccumulatorBytesPerPixel × (threads + 1) + 8 × threads) — the total, one accumulator per
 /// thread and each tracing thread's chunk scratch (core::orderedReduce).
 double renderPeakBytes(int width, int height, int threads);
-/// sysconf(_SC_PHYS_PAGES) × sysconf(_SC_PAGE_SIZE), or 0 when unknown.
-double physicalMemoryBytes();
 /// Throws core::InputError("camera.pixels", …) naming the size, the estimate and the remedy (fewer pixels or
 /// --threads) when renderPeakBytes exceeds half of `physical_bytes` (0: unknown, never refused).
 void checkRenderMemory(int width, int height, int threads, double physical_bytes);
