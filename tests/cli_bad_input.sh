@@ -89,12 +89,16 @@ expect_error "channel 0"              metrics "$tmp/ok.wav" --channel 0
 expect_error "channel past the last"  metrics "$tmp/ok.wav" --channel 2
 expect_error "unknown band kind"      metrics "$tmp/ok.wav" --bands fifth
 # diffray ir: a bad room file or option gives one line and leaves no WAV, JSON or CSV behind.
-expect_ir_error() {  # expect_ir_error DESCRIPTION ROOM_JSON_TEXT [ARGS...]
-  local what="$1" text="$2"; shift 2
+expect_ir_says() {  # expect_ir_says DESCRIPTION PATTERN ROOM_JSON_TEXT [ARGS...]: the line must hold PATTERN
+  local what="$1" pattern="$2" text="$3"; shift 3
   printf '%s\n' "$text" >"$tmp/room.json"
   local rays=(--rays 2000)
   case " $* " in *" --rays "*) rays=() ;; esac
-  expect_clean "ir: $what" "out.*" "" ir "$tmp/room.json" -o "$tmp/out.wav" "${rays[@]}" "$@"
+  expect_clean "ir: $what" "out.*" "$pattern" ir "$tmp/room.json" -o "$tmp/out.wav" "${rays[@]}" "$@"
+}
+expect_ir_error() {  # expect_ir_error DESCRIPTION ROOM_JSON_TEXT [ARGS...]
+  local what="$1"; shift
+  expect_ir_says "$what" "" "$@"
 }
 mat='"materials": {"w": {"absorption": 0.3, "scattering": 0.2}}'
 box='"geometry": [{"box": {"min": [0,0,0], "max": [4,3,2.5], "materials": {"all": "w"}}}]'
@@ -121,6 +125,20 @@ expect_ir_error "lossless 1 cm box (endless bounces)" "{\"materials\": {\"w\": {
 expect_ir_error "8 kHz band at 8 kHz sampling" "{$mat, $box, $src, $lis, \"output\": {\"sample_rate_hz\": 8000}}"
 expect_ir_error "one triangle, no volume" "{$mat, \"geometry\": [{\"polygon\": {\"vertices\": [[0,0,0],[1,0,0],[0,1,0]], \"material\": \"w\"}}], $src, $lis}"
 expect_ir_error "ISM order out of range" "$good" --ism-order 99
+# Refused when the file is loaded, naming the field (rooms/README.md, "The scene format").
+expect_ir_says "8 kHz band at 16 kHz sampling" "output.sample_rate_hz: must exceed 22480 Hz" "{$mat, $box, $src, $lis, \"output\": {\"sample_rate_hz\": 16000}}"
+expect_ir_says "fractional sample rate" "output.sample_rate_hz: must be a whole number" "{$mat, $box, $src, $lis, \"output\": {\"sample_rate_hz\": 44100.5}}"
+expect_ir_says "default name taken" 'sources[1]: duplicate source name "S2"' "{$mat, $box, \"sources\": [{\"name\": \"S2\", \"position\": [1,1,1]}, {\"position\": [2,1,1]}], $lis}"
+expect_ir_says "listener name with a comma" "must not contain a comma" "{$mat, $box, $src, \"listeners\": [{\"name\": \"R,1\", \"position\": [3,2,1.2]}]}"
+expect_ir_says "material given twice" "materials.w: duplicate key" "{\"materials\": {\"w\": {\"absorption\": 0.3, \"scattering\": 0.2}, \"w\": {\"absorption\": 0.9, \"scattering\": 0.2}}, $box, $src, $lis}"
+expect_ir_says "sources given twice" "sources: duplicate key" "{$mat, $box, $src, $src, $lis}"
+expect_ir_says "OBJ file is a folder" "is a directory" "{$mat, \"geometry\": [{\"obj\": {\"file\": \".\", \"default_material\": \"w\"}}], $src, $lis}"
+expect_ir_says "library is a folder" "materials_library: " "{\"materials_library\": \".\", $mat, $box, $src, $lis}"
+printf 'v 0 0 0\nv 1 0 0\n' >"$tmp/nofaces.obj"
+expect_ir_says "OBJ without faces" "has no faces" "{$mat, \"geometry\": [{\"obj\": {\"file\": \"nofaces.obj\", \"default_material\": \"w\"}}], $src, $lis}"
+printf 'v 1 0 1\nv -0.809017 0.587785 1\nv 0.309017 -0.951057 1\nv 0.309017 0.951057 1\nv -0.809017 -0.587785 1\nf 1 2 3 4 5\n' >"$tmp/star.obj"
+expect_ir_says "pentagram OBJ face" "star.obj:6: " "{$mat, \"geometry\": [{\"obj\": {\"file\": \"star.obj\", \"default_material\": \"w\"}}], $src, $lis}"
+expect_ir_says "bow-tie polygon" "self-intersecting" "{$mat, \"geometry\": [{\"polygon\": {\"vertices\": [[1,1,1],[2,2,1],[2,1,1],[1,2,1]], \"material\": \"w\"}}], $src, $lis}"
 # Occluders (rooms/README.md, "occluders") and the diffraction options.
 door='"type": "door", "centre": [2,1.5,1], "normal": [1,0,0], "width_m": 0.9, "height_m": 2'
 expect_ir_error "unknown occluder type" "{$mat, $box, $src, $lis, \"occluders\": [{\"type\": \"window\"}]}"

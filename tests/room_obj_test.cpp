@@ -121,3 +121,37 @@ TEST(RoomObj, MissingFile) {
     EXPECT_EQ(std::string(e.what()), "/nonexistent/x.obj: cannot open the OBJ file");
   }
 }
+
+TEST(RoomObj, AStarPolygonIsRefusedNotFanned) {
+  // A pentagram {5/2}: every corner turns the same way, but twice round (total turning 4π). Fanned, it gave
+  // overlapping triangles; it is self-intersecting, as the same polygon given inline in a scene is.
+  std::string text;
+  for (int i = 0; i < 5; ++i)
+    text += "v " + std::to_string(std::cos(i * 4 * M_PI / 5)) + " " + std::to_string(std::sin(i * 4 * M_PI / 5)) + " 0\n";
+  text += "f 1 2 3 4 5\n";
+  try {
+    roomWith(parse(text));
+    ADD_FAILURE() << "no error";
+  } catch (const dc::InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("t.obj:6: ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("self-intersecting"), std::string::npos) << e.what();
+  }
+  // The convex pentagon on the same points is fanned: 3 triangles, area (5/2)·sin 72° for circumradius 1.
+  text.clear();
+  for (int i = 0; i < 5; ++i)
+    text += "v " + std::to_string(std::cos(i * 2 * M_PI / 5)) + " " + std::to_string(std::sin(i * 2 * M_PI / 5)) + " 0\n";
+  text += "f 1 2 3 4 5\n";
+  const dr::Room room = roomWith(parse(text));
+  EXPECT_EQ(room.mesh.triangles.size(), 3u);
+  EXPECT_EQ(room.mesh.vertices.size(), 5u);
+  EXPECT_NEAR(room.surfaceArea(), 2.5 * std::sin(2 * M_PI / 5), 1e-5);  // to_string keeps 6 decimals
+}
+
+TEST(RoomObj, ADirectoryIsNotAnObjFile) {
+  try {
+    dr::loadObj("/tmp");
+    ADD_FAILURE() << "no error";
+  } catch (const dc::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "/tmp: is a directory");
+  }
+}

@@ -377,6 +377,112 @@ TEST(RoomSceneFile, DegenerateObjFacesAreSkippedWithAWarning) {
   expectMessage(warnings[0], {"cube.obj: skipped 2 face(s) of zero area"});
 }
 
+TEST(RoomSceneFileErrors, ADefaultNameClashIsADuplicateOnTheEntry) {
+  // The second source's default name is "S2", which the first one took: the entry has no "name" to blame.
+  auto scene = baseScene();
+  scene["sources"] = {{{"name", "S2"}, {"position", {1, 1, 1}}}, {{"position", {2, 1, 1}}}};
+  EXPECT_EQ(errorOf(scene), "rooms/x.json: sources[1]: duplicate source name \"S2\"");
+  scene = baseScene();
+  scene["listeners"] = {{{"name", "R2"}, {"position", {3, 2, 1.2}}}, {{"position", {3, 1, 1.2}}}};
+  EXPECT_EQ(errorOf(scene), "rooms/x.json: listeners[1]: duplicate listener name \"R2\"");
+  // A given name that clashes is still blamed on the name.
+  scene = baseScene();
+  scene["sources"] = {{{"position", {1, 1, 1}}}, {{"name", "S1"}, {"position", {2, 1, 1}}}};
+  EXPECT_EQ(errorOf(scene), "rooms/x.json: sources[1].name: duplicate source name \"S1\"");
+}
+
+TEST(RoomSceneFileErrors, NamesThatWouldBreakTheHistogramCsv) {
+  for (const char* name : {"R,1", "R\"1", "R\n1"}) {
+    auto scene = baseScene();
+    scene["listeners"][0]["name"] = name;
+    expectMessage(errorOf(scene), {"rooms/x.json: listeners[0].name: listener name", "must not contain a comma"});
+    scene = baseScene();
+    scene["sources"][0]["name"] = name;
+    expectMessage(errorOf(scene), {"rooms/x.json: sources[0].name: source name", "must not contain a comma"});
+  }
+}
+
+TEST(RoomSceneFile, AnEmptyDescriptionIsFreeText) {
+  auto scene = baseScene();
+  scene["description"] = "";
+  EXPECT_EQ(errorOf(scene), "(no error)");
+  scene["description"] = 3;
+  EXPECT_EQ(errorOf(scene), "rooms/x.json: description: must be a string, got 3");
+}
+
+TEST(RoomSceneFileErrors, SampleRateIsWholeAndAboveTheTopBandsNyquist) {
+  auto scene = baseScene();
+  scene["output"]["sample_rate_hz"] = 44100.5;
+  EXPECT_EQ(errorOf(scene), "rooms/x.json: output.sample_rate_hz: must be a whole number, got 44100.5");
+  // Both band sets end at 10^4.05 Hz (8 kHz octave: 10^(3.9 + 0.15); 10 kHz third-octave: 10^(4 + 0.05)), and the
+  // band filters' 40 Hz crossover (half-width h, e·sinh(h ln 10) = 20 Hz) ends at 20 + √(e² + 20²) Hz:
+  // the rate must exceed twice that, 22480.40 Hz.
+  const double e = std::pow(10.0, 4.05), lowest = 2.0 * (20.0 + std::sqrt(e * e + 400.0));
+  ASSERT_NEAR(lowest, 22480.40, 0.01);
+  for (const char* bands : {"octave", "third-octave"}) {
+    scene = baseScene();
+    scene["bands"] = bands;
+    scene["output"]["sample_rate_hz"] = 16000;
+    expectMessage(errorOf(scene), {"rooms/x.json: output.sample_rate_hz: must exceed 22480 Hz", "Nyquist"});
+    scene["output"]["sample_rate_hz"] = std::floor(lowest);
+    expectMessage(errorOf(scene), {"rooms/x.json: output.sample_rate_hz: must exceed 22480 Hz"});
+    scene["output"]["sample_rate_hz"] = std::ceil(lowest);
+    EXPECT_EQ(errorOf(scene), "(no error)") << bands;
+  }
+}
+
+TEST(RoomSceneFileErrors, AKeyGivenTwiceInOneObject) {
+  // nlohmann keeps the last of two equal keys; a scene refuses them, naming the path.
+  const std::string materials = R"("materials": {"m": {"absorption": 0.1, "scattering": 0.1},
+                                                 "m": {"absorption": 0.9, "scattering": 0.1}},)";
+  const std::string rest = R"("geometry": [{"box": {"min": [0, 0, 0], "max": [4, 3, 2.5], "materials": {"all": "m"}}}],
+                              "listeners": [{"position": [3, 2, 1.2]}])";
+  EXPECT_EQ(errorOfText("{" + materials + rest + R"(, "sources": [{"position": [1, 1, 1]}]})"),
+            "rooms/x.json: materials.m: duplicate key");
+  EXPECT_EQ(errorOfText(R"({"materials": {"m": {"absorption": 0.1, "scattering": 0.1}},)" + rest +
+                        R"(, "sources": [{"position": [1, 1, 1]}], "sources": [{"position": [2, 1, 1]}]})"),
+            "rooms/x.json: sources: duplicate key");
+  EXPECT_EQ(errorOfText(R"({"materials": {"m": {"absorption": 0.1, "scattering": 0.1}},)" + rest +
+                        R"(, "sources": [{"position": [1, 1, 1]}, {"position": [2, 1, 1], "position": [2, 2, 1]}]})"),
+            "rooms/x.json: sources[1].position: duplicate key");
+  // Equal keys in different objects are fine (every source has its own "position").
+  EXPECT_EQ(errorOfText(R"({"materials": {"m": {"absorption": 0.1, "scattering": 0.1}},)" + rest +
+                        R"(, "sources": [{"position": [1, 1, 1]}, {"position": [2, 1, 1]}]})"),
+            "(no error)");
+  // The material library goes through the same parser.
+  const std::string lib = (std::filesystem::temp_directory_path() / "diffray_dup_library.json").string();
+  std::ofstream(lib) << R"({"materials": {"a": {"absorption": 0.1, "scattering": 0.1, "source": "x"},
+                                          "a": {"absorption": 0.2, "scattering": 0.1, "source": "x"}}})";
+  try {
+    dr::loadMaterialLibrary(lib, dc::Bands::octave());
+    ADD_FAILURE() << "no error";
+  } catch (const dc::InputError& err) {
+    EXPECT_EQ(std::string(err.what()), lib + ": materials.a: duplicate key");
+  }
+  std::filesystem::remove(lib);
+}
+
+TEST(RoomSceneFileErrors, NamedFilesMustBeRegularFiles) {
+  auto scene = baseScene();
+  scene["geometry"].push_back({{"obj", {{"file", "."}, {"default_material", "m"}}}});
+  expectMessage(errorOf(scene), {"rooms/x.json: geometry[1].obj.file: ", "is a directory, not the OBJ file"});
+  scene["geometry"][1]["obj"]["file"] = "/dev/null";
+  expectMessage(errorOf(scene), {"rooms/x.json: geometry[1].obj.file: /dev/null is not a regular file"});
+  scene["geometry"][1]["obj"]["file"] = "no-faces.obj";
+  expectMessage(errorOf(scene), {"rooms/x.json: geometry[1].obj.file: ", "no-faces.obj has no faces"});
+  scene = baseScene();
+  scene["materials_library"] = ".";
+  expectMessage(errorOf(scene), {"rooms/x.json: materials_library: ", "is a directory, not the material library"});
+}
+
+TEST(RoomSceneFileErrors, ABowTieIsSelfIntersectingNotArealess) {
+  // Its two halves cancel in the area (Newell's normal is zero), but what is wrong is the crossing.
+  auto scene = baseScene();
+  scene["geometry"].push_back(
+      {{"polygon", {{"vertices", {{1, 1, 1}, {2, 2, 1}, {2, 1, 1}, {1, 2, 1}}}, {"material", "m"}}}});
+  expectMessage(errorOf(scene), {"rooms/x.json: geometry[1].polygon.vertices: the polygon is self-intersecting"});
+}
+
 // Every shipped room (rooms/*.json but the material library) loads: the README's commands keep working.
 TEST(RoomShippedScenes, EveryRoomLoads) {
   int rooms = 0;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "diffray/core/error.h"
@@ -23,11 +25,66 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return prev[b.size()];
 }
 
+// Follows the parser's events to refuse a key repeated within one object (nlohmann would keep the last
+// one silently) and to name where it is ("materials.m", "geometry[2].box.name").
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start: childStarts(), stack_.push_back({true, {}, {}, -1}); break;
+      case E::array_start: childStarts(), stack_.push_back({false, {}, {}, -1}); break;
+      case E::object_end:
+      case E::array_end: stack_.pop_back(); break;
+      case E::value: childStarts(); break;
+      case E::key: {
+        Frame& f = stack_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) throw core::InputError(file_ + ": " + path(), "duplicate key");
+        break;
+      }
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;  // the object's current key
+    long index;       // the array's current element
+  };
+
+  void childStarts() {
+    if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+  }
+
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : stack_)
+      p += f.object ? (p.empty() ? "" : ".") + f.key : "[" + std::to_string(f.index) + "]";
+    return p;
+  }
+
+  std::string file_;
+  std::vector<Frame> stack_;
+};
+
 }  // namespace
+
+std::string notRegularFile(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) return "is a directory";
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return "is not a regular file";
+  return "";
+}
 
 nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
   try {
-    return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    return nlohmann::json::parse(text, DuplicateKeyCheck(file), true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is 1-based and points just past the offending character; count lines up to it.
     const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
@@ -51,6 +108,7 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
 }
 
 nlohmann::json parseJsonFile(const std::string& path) {
+  if (const std::string problem = notRegularFile(path); !problem.empty()) throw core::InputError(path, problem);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw core::InputError(path, "cannot open the file");
   std::ostringstream text;

@@ -109,6 +109,7 @@ ObjModel parseObj(std::istream& in, const std::string& file) {
 }
 
 ObjModel loadObj(const std::string& path) {
+  if (const std::string why = notRegularFile(path); !why.empty()) throw core::InputError(path, why);
   std::ifstream in(path);
   if (!in) throw core::InputError(path, "cannot open the OBJ file");
   return parseObj(in, path);
@@ -132,12 +133,18 @@ int addObjToRoom(const ObjModel& model, const std::vector<int>& material_of_grou
     }
     const int material = material_of_group[f.group];
     const std::string& group = model.groups[f.group];
+    // Convex: every corner turns the same way and the turns add up to one turn (2π), not more: a pentagram's
+    // corners all turn the same way too, twice round. Anything else goes through addPolygon's checks.
     bool convex = true;
+    double turning = 0.0;
+    const core::Vec3 unit_n = n.normalized();
     for (std::size_t i = 0; i < p.size() && convex; ++i) {
       const core::Vec3 &a = p[i], &b = p[(i + 1) % p.size()], &c = p[(i + 2) % p.size()];
-      if ((b - a).cross(c - b).dot(n) <= 0.0) convex = false;
+      const double sine = (b - a).cross(c - b).dot(unit_n);
+      if (sine <= 0.0) convex = false;
+      turning += std::atan2(sine, (b - a).dot(c - b));
     }
-    if (convex) {
+    if (convex && turning < 3.0 * core::kPi) {
       for (std::size_t i = 1; i + 1 < f.vertices.size(); ++i) {
         room.mesh.triangles.push_back({base + f.vertices[0], base + f.vertices[i], base + f.vertices[i + 1]});
         room.mesh.object_of_triangle.push_back(material);

@@ -85,7 +85,18 @@ void Room::addPolygon(const std::vector<Vec3>& vertices, int material, const std
   // Newell's normal: robust for non-convex polygons, zero for degenerate ones.
   Vec3 n(0, 0, 0);
   for (std::size_t i = 0; i < vertices.size(); ++i) n += vertices[i].cross(vertices[(i + 1) % vertices.size()]);
-  if (!(n.norm() > 1e-12)) throw core::InputError(group, "the polygon has no area (collinear or repeated vertices)");
+  if (!(n.norm() > 1e-12)) {
+    // A bow-tie's two halves cancel in Newell's normal: report it as self-intersecting, which it is, when the
+    // vertices span a plane at all.
+    Vec3 best(0, 0, 0);
+    for (std::size_t i = 1; i < vertices.size(); ++i)
+      for (std::size_t j = i + 1; j < vertices.size(); ++j) {
+        const Vec3 c = (vertices[i] - vertices[0]).cross(vertices[j] - vertices[0]);
+        if (c.norm() > best.norm()) best = c;
+      }
+    if (best.norm() > 1e-12) requireSimplePlanar(vertices, best.normalized(), group);
+    throw core::InputError(group, "the polygon has no area (collinear or repeated vertices)");
+  }
   n.normalize();
   requireSimplePlanar(vertices, n, group);
   // Ear clipping, O(n²) per ear: polygons in scene files are small.

@@ -23,6 +23,25 @@ std::string joinPath(const std::string& dir, const std::string& rel) {
 
 std::string inQuotes(const std::string& s) { return "\"" + s + "\""; }
 
+// A file a scene field names (an OBJ, the material library): it must exist and be a regular file.
+void requireInputFile(const JsonField& field, const std::string& path, const std::string& what) {
+  if (const std::string why = notRegularFile(path); !why.empty()) field.fail(path + " " + why + ", not " + what);
+  if (!std::ifstream(path)) field.fail("cannot open " + what + " " + path);
+}
+
+// A source's or listener's name: unique among its kind (a default name "S2" may clash with a given one, so
+// the entry is blamed when it has no "name") and free of what would break the histogram CSV's header.
+void claimName(std::set<std::string>& names, const std::string& name, const JsonField& entry, const char* kind) {
+  const JsonField at = entry.has("name") ? entry["name"] : entry;
+  if (name.find_first_of(",\"\n\r") != std::string::npos)
+    at.fail(std::string(kind) + " name " + nlohmann::json(name).dump() + " must not contain a comma, a quote or a line break "
+            "(it heads a column of the histogram CSV)");
+  if (!names.insert(name).second) at.fail(std::string("duplicate ") + kind + " name " + inQuotes(name));
+}
+
+// Half the width of ir::BandFilter's crossover above the top band (its default 40 Hz transition).
+constexpr double kTopCrossoverHalfWidthHz = 20.0;
+
 // Everything the parts of the scene need: the room being built and how material names resolve.
 struct SceneParser {
   std::string file, base_dir;
@@ -114,8 +133,9 @@ struct SceneParser {
     o.allowKeys({"file", "materials", "default_material"});
     const JsonField file_field = o["file"];
     const std::string path = joinPath(base_dir, file_field.string());
-    if (!std::ifstream(path)) file_field.fail("cannot open the OBJ file " + path);
+    requireInputFile(file_field, path, "the OBJ file");
     const ObjModel model = loadObj(path);
+    if (model.faces.empty()) file_field.fail(path + " has no faces");
     std::map<std::string, int> group_index;
     std::string group_list;
     for (std::size_t g = 0; g < model.groups.size(); ++g) {
@@ -201,7 +221,7 @@ struct SceneParser {
       s.allowKeys({"name", "position", "power_w", "directivity"});
       Source src;
       src.name = s.has("name") ? s["name"].string() : "S" + std::to_string(i + 1);
-      if (!names.insert(src.name).second) s["name"].fail("duplicate source name " + inQuotes(src.name));
+      claimName(names, src.name, s, "source");
       src.position_m = s["position"].vec3();
       if (s.has("power_w")) src.power_w = s["power_w"].positive();
       if (s.has("directivity")) src.directivity = directivity(s["directivity"]);
@@ -218,7 +238,7 @@ struct SceneParser {
       l.allowKeys({"name", "position", "radius_m"});
       Listener r;
       r.name = l.has("name") ? l["name"].string() : "R" + std::to_string(i + 1);
-      if (!names.insert(r.name).second) l["name"].fail("duplicate listener name " + inQuotes(r.name));
+      claimName(names, r.name, l, "listener");
       r.position_m = l["position"].vec3();
       if (l.has("radius_m")) r.radius_m = l["radius_m"].length();
       room.listeners.push_back(r);
@@ -238,7 +258,20 @@ struct SceneParser {
   void output(const JsonField& o) {
     o.allowKeys({"sample_rate_hz", "ir_length_s", "max_length_s", "histogram_bin_s", "ism_order", "rays", "seed"});
     Output& out = room.output;
-    if (o.has("sample_rate_hz")) out.sample_rate_hz = o["sample_rate_hz"].numberIn(8000.0, 384000.0);
+    if (o.has("sample_rate_hz")) {
+      const JsonField rate = o["sample_rate_hz"];
+      out.sample_rate_hz = static_cast<double>(rate.integerIn(8000, 384000));
+      // The IR's band filters need the top band and its crossover below the Nyquist frequency: ir::BandFilter's
+      // transition of 40 Hz (half-width h with e·sinh(h·ln10) = 20 Hz) ends at e·10^h = 20 + √(e² + 20²) Hz.
+      // For octaves up to 8 kHz, and third-octaves up to 10 kHz (e = 11220 Hz), the rate must exceed 22480 Hz.
+      const int top = room.bands.size() - 1;
+      const double edge_hz = room.bands.upperHz(top), half_hz = kTopCrossoverHalfWidthHz;
+      const double highest_hz = half_hz + std::sqrt(edge_hz * edge_hz + half_hz * half_hz);
+      if (!(highest_hz < 0.5 * out.sample_rate_hz))
+        rate.fail("must exceed " + formatNumber(std::floor(2.0 * highest_hz)) + " Hz: the " + room.bands.label(top) +
+                  " Hz band (up to " + formatNumber(std::round(room.bands.upperHz(top))) +
+                  " Hz) must lie below the Nyquist frequency, got " + formatNumber(out.sample_rate_hz));
+    }
     if (o.has("max_length_s")) out.max_length_s = o["max_length_s"].numberIn(1e-3, 600.0);
     if (o.has("ir_length_s")) {
       const JsonField len = o["ir_length_s"];
@@ -293,7 +326,8 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
   Room room;
   room.file = file;
   room.name = top.has("name") ? top["name"].string() : stemOf(file);
-  if (top.has("description")) top["description"].string();
+  if (top.has("description") && !top["description"].json().is_string())  // free text, may be empty
+    top["description"].fail("must be a string, got " + describeJson(top["description"].json()));
   if (top.has("bands")) {
     const std::string b = top["bands"].string();
     if (b == "octave") room.bands = core::Bands::octave();
@@ -304,7 +338,7 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
   if (top.has("materials_library")) {
     const JsonField lib = top["materials_library"];
     p.library_file = joinPath(base_dir, lib.string());
-    if (!std::ifstream(p.library_file)) lib.fail("cannot open the material library " + p.library_file);
+    requireInputFile(lib, p.library_file, "the material library");
     p.library = loadMaterialLibrary(p.library_file, room.bands);
   }
   if (top.has("materials")) p.materials(top["materials"]);

@@ -58,8 +58,13 @@ class JsonField {
   std::string file_, path_;
 };
 
+/// "is a directory" or "is not a regular file" (a FIFO, a device) for a path that exists but is no input
+/// file, else "" (a missing file is the caller's to report).
+std::string notRegularFile(const std::string& path);
+
 /// Reads and parses a JSON file (// and /* */ comments allowed). A missing file or a syntax error
-/// throws core::InputError naming "FILE:LINE:COLUMN".
+/// throws core::InputError naming "FILE:LINE:COLUMN"; a key repeated within one object throws
+/// "FILE: PATH.KEY: duplicate key".
 nlohmann::json parseJsonFile(const std::string& path);
 /// The same for text already read; `file` names it in messages.
 nlohmann::json parseJsonText(const std::string& text, const std::string& file);

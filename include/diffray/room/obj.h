@@ -33,7 +33,7 @@ ObjModel parseObj(std::istream& in, const std::string& file);
 ObjModel loadObj(const std::string& path);
 
 /// Appends the model's faces to `room`, face group g getting material index material_of_group[g].
-/// Triangles share the model's vertices; convex polygons are fanned, non-convex ones go through
+/// Triangles share the model's vertices; convex polygons (winding once) are fanned, others go through
 /// Room::addPolygon (ear clipping). Faces of (near) zero area are skipped and counted in the return
 /// value. A non-planar or self-intersecting polygon throws core::InputError naming FILE:LINE.
 int addObjToRoom(const ObjModel& model, const std::vector<int>& material_of_group, Room& room);
