@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "diffray/core/error.h"
 #include "diffray/core/math.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/ir/metrics.h"
@@ -44,6 +45,17 @@ TEST(IrBandFilter, BandsSumBackToTheInputInsideTheCoveredRange) {
     worst = std::max(worst, std::abs(sum - x[n]));
   }
   EXPECT_LT(worst, 1e-9);
+}
+
+// The scene loader refuses a sample rate whose Nyquist frequency the top band's filter would reach, with its
+// own copy of the crossover (room/scene_file.cpp, kTopCrossoverHalfWidthHz): for both default band sets it
+// asks for more than 22480 Hz. The filter itself must agree, or a scene would load and then fail after
+// tracing (or be refused while it would have worked).
+TEST(IrBandFilter, TopBandNeedsTheRateTheSceneLoaderAsksFor) {
+  for (const core::Bands& bands : {core::Bands::octave(), core::Bands::thirdOctave()}) {
+    EXPECT_THROW(BandFilter(bands, 22480.0), core::InputError);
+    EXPECT_NO_THROW(BandFilter(bands, 22481.0));
+  }
 }
 
 TEST(IrBandFilter, ZeroPhaseAndSelective) {

@@ -40,7 +40,7 @@ void claimName(std::set<std::string>& names, const std::string& name, const Json
 }
 
 // Half the width of ir::BandFilter's crossover above the top band (its default 40 Hz transition).
-constexpr double kTopCrossoverHalfWidthHz = 20.0;
+constexpr double kTopCrossoverHalfWidthHz = 20.0;  // tied by IrBandFilter.TopBandNeedsTheRateTheSceneLoaderAsksFor
 
 // Everything the parts of the scene need: the room being built and how material names resolve.
 struct SceneParser {
