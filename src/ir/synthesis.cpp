@@ -30,6 +30,9 @@ constexpr double kResolutionCycles = 2.0;
 // The last round's half-window: kWideFactor times the band's, plus kWideMinBins (tracedParts).
 constexpr int kWideFactor = 8;
 constexpr int kWideMinBins = 10;
+// Jacobi rounds for an arrival's band amplitudes (combine): each brings the bands' analysed energies ~30×
+// closer (the crossovers' weight against a band's own); eight leave them within ~1e-6.
+constexpr int kArrivalRounds = 8;
 
 /// Which histogram bin each sample falls in (bin i covers [i·bin_s, (i+1)·bin_s)), as sample ranges.
 struct BinSpans {
@@ -224,40 +227,87 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t x, size_t y) { return r.arrivals[x].delay_s < r.arrivals[y].delay_s; });
+  // The analysis weights of the arrivals' band parts: band b of a pulse Σ_k c_k·A_k·W_k (c_k its band
+  // phases) holds (2/m)·Σ_f W_b²·|Σ_k c_k A_k W_k|² = Σ_{k,l} A_k A_l Re(c_k c̄_l)·M_bkl, with
+  // M_bkl = (2/m)·Σ_f W_b² W_k W_l; bands overlap only with their neighbours (k, l ∈ b ± 1).
+  const int nb = r.bands.size();
+  const auto gainAt = [&](int k, int j) {
+    if (k < 0 || k >= nb) return 0.0;
+    const int i = j - gains[k].first;
+    return i >= 0 && i < static_cast<int>(gains[k].w.size()) ? gains[k].w[i] : 0.0;
+  };
+  std::vector<double> weight(static_cast<size_t>(nb) * 9, 0.0);  // [b][k − b + 1][l − b + 1]
+  for (int b = 0; b < nb; ++b)
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dl = -1; dl <= 1; ++dl) {
+        double sum = 0.0;
+        for (size_t i = 0; i < gains[b].w.size(); ++i) {
+          const int j = gains[b].first + static_cast<int>(i);
+          sum += gains[b].w[i] * gains[b].w[i] * gainAt(b + dk, j) * gainAt(b + dl, j);
+        }
+        weight[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)] = 2.0 * sum / m;
+      }
   bool first = true;
-  BandSpectrum u;
+  std::vector<BandSpectrum> u(static_cast<size_t>(nb));
+  std::vector<double> amplitude(static_cast<size_t>(nb)), target(static_cast<size_t>(nb)), scale(static_cast<size_t>(nb));
+  std::vector<std::complex<double>> rotation(static_cast<size_t>(nb));
   for (size_t index : order) {
     const Arrival& a = r.arrivals[index];
     if (a.delay_s >= length_s) continue;  // beyond the response: its energy is not in it
     // e^{−2πi·k·τ·fs/m} by recurrence from the band's first bin: accurate to ~k·1e-16, ample here.
     const double phase_step = -core::kTwoPi * a.delay_s * fs / m;
     const std::complex<double> step = std::polar(1.0, phase_step);
-    for (int b = 0; b < r.bands.size(); ++b) {
-      const double energy = std::max(0.0, a.energy[b]);
-      if (energy == 0.0) continue;
-      const double amplitude = std::sqrt(energy / band_energy[b]);
+    for (int b = 0; b < nb; ++b) {
+      target[b] = std::max(0.0, a.energy[b]);
+      amplitude[b] = std::sqrt(target[b] / band_energy[b]);  // the part's own energy: a start
+      rotation[b] = {1.0, 0.0};
+      if (target[b] == 0.0) continue;
       const BandGains& g = gains[b];
-      u.resize(g.w.size());
-      std::complex<double> z = std::polar(amplitude, phase_step * g.first);
-      for (size_t j = 0; j < g.w.size(); ++j, z *= step) u[j] = g.w[j] * z;
+      u[b].resize(g.w.size());
+      std::complex<double> z = std::polar(1.0, phase_step * g.first);
+      for (size_t j = 0; j < g.w.size(); ++j, z *= step) u[b][j] = g.w[j] * z;
       // The phase of the pulse in this band (a rotation e^{−iφ} of its positive-frequency spectrum: the
       // same envelope, carrier shifted) chosen so that it is orthogonal to what the band holds already:
       // Re(e^{−iφ}·⟨u, reference⟩) = 0, so that band energies add as the energy model says (synthesis.h).
       // The earliest arrival (the direct sound, when there is one) meets nothing and keeps phase 0, so
-      // its broadband pulse stays sharp: the onset (time zero of every metric) is found on it.
-      const std::complex<double> rotation =
-          orthogonal ? orthogonalRotation(innerProduct(u, reference[b])) : std::complex<double>(1.0, 0.0);
-      for (size_t j = 0; j < u.size(); ++j) {
-        part[b][j] += rotation * u[j];
-        reference[b][j] += rotation * u[j];
+      // its broadband pulse stays sharp: the onset (time zero of every metric) is found on it. (Scaling u
+      // later keeps it orthogonal.)
+      if (orthogonal) rotation[b] = orthogonalRotation(innerProduct(u[b], reference[b]));
+    }
+    // The amplitudes that give band b of the whole pulse (W_b of the sum of its parts, what an octave
+    // analysis sees) the arrival's energy: a few Jacobi rounds on the weights above. Matching each part's
+    // own energy left the lowest band 7 % short (its lower crossover holds its part filtered twice) and
+    // bands whose neighbours differ in amplitude off by the crossover's cross terms.
+    for (int round = 0; round < kArrivalRounds; ++round) {
+      for (int b = 0; b < nb; ++b) {
+        scale[b] = 1.0;
+        if (target[b] == 0.0) continue;
+        double held = 0.0;
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dl = -1; dl <= 1; ++dl) {
+            const int k = b + dk, l = b + dl;
+            if (k < 0 || l < 0 || k >= nb || l >= nb) continue;
+            held += amplitude[k] * amplitude[l] * std::real(rotation[k] * std::conj(rotation[l])) *
+                    weight[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)];
+          }
+        if (held > 0.0) scale[b] = std::sqrt(target[b] / held);
+      }
+      for (int b = 0; b < nb; ++b) amplitude[b] *= scale[b];
+    }
+    for (int b = 0; b < nb; ++b) {
+      if (target[b] == 0.0) continue;
+      const std::complex<double> c = rotation[b] * amplitude[b];
+      for (size_t j = 0; j < u[b].size(); ++j) {
+        part[b][j] += c * u[b][j];
+        reference[b][j] += c * u[b][j];
       }
     }
     if (first && orthogonal) {
       // The traced part (all of its envelope kept: a rotation of the carrier) made orthogonal to it.
       for (size_t b = 0; b < traced.size(); ++b) {
-        const std::complex<double> rotation = orthogonalRotation(innerProduct(traced[b], part[b]));
+        const std::complex<double> turn = orthogonalRotation(innerProduct(traced[b], part[b]));
         for (size_t j = 0; j < traced[b].size(); ++j) {
-          traced[b][j] *= rotation;
+          traced[b][j] *= turn;
           reference[b][j] += traced[b][j];
         }
       }

@@ -1,8 +1,9 @@
 #pragma once
 // Impulse response synthesis from an EnergyResponse (design.md §2, "IR synthesis").
 //
-// Contract. The output p (sample 0 at emission, sample_rate_hz) follows the convention that Σ p[n]² over
-// a span is the energy (J/m²) of that span, band by band:
+// Contract. The output p (sample 0 at emission, sample_rate_hz) follows the convention that Σ p_b[n]² over
+// a span is the energy (J/m²) of that span in band b, p_b being band b of p (BandFilter::split, as the
+// metrics analyse it):
 //  * Traced (diffuse) part: a Poisson sequence of Diracs with random signs and rate
 //    μ(t) = min(4πc³t²/V, 10⁴ s⁻¹) (the density of image sources at time t in a room of volume V). Per
 //    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter (the
@@ -24,7 +25,11 @@
 //    once), and the onset, time zero of every metric, would be found early. The gains match what is left.
 //  * Arrivals (direct sound, image sources) are placed at their exact delays, fractional ones included:
 //    each is built in the frequency domain as Σ_b A_b·W_b(f)·e^{−2πifτ}·e^{−iφ_b} with A_b chosen so that
-//    band b's part carries exactly the arrival's energy in that band (Parseval). The energy model adds
+//    band b of the whole pulse (W_b applied to the sum of its band parts, what an octave analysis sees)
+//    carries exactly the arrival's energy in that band (Parseval, a few Jacobi rounds over the
+//    neighbouring bands' crossovers). The pulse's broadband Σ p² is then slightly more than the sum of
+//    its band energies (the crossovers count in two bands), and a pulse within a low band's ringing time
+//    of t = 0 loses the part of it that would lie before the response (at 12 ms, 15 % of its 63 Hz band). The energy model adds
 //    arrivals' energies, i.e. treats them as incoherent; pulses that overlap within a band's time
 //    resolution (~1/B: 22 ms at 63 Hz; or coincide exactly, as mirror-symmetric image sources do) would
 //    otherwise interfere, up to twice or down to none of the summed energy; so do an arrival and the
