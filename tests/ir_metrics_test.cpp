@@ -210,6 +210,17 @@ TEST(IrMetrics, EvaluationRangesStopTenDecibelsAboveTheNoise) {
   EXPECT_NEAR(m.edt, t60, 0.15 * t60);
   EXPECT_TRUE(std::isnan(m.t20)) << m.t20;
   EXPECT_TRUE(std::isnan(m.t30)) << m.t30;
+  EXPECT_FALSE(std::isnan(m.c50));
+  // A floor only 6 dB below the start: C50, C80, D50 and Ts would measure the noise, and are not given.
+  std::mt19937_64 rng2(6);
+  for (size_t n = 0; n < e.size(); ++n) {
+    const double p = std::exp(-0.5 * rate(t60) * static_cast<double>(n) / fs) * normal(rng2) + 0.5 * normal(rng2);
+    e[n] = p * p;
+  }
+  const BandMetrics noisy = metricsFromEnergy(e, 1.0 / fs);
+  EXPECT_LT(noisy.decay_range_db, 10.0);
+  EXPECT_TRUE(std::isnan(noisy.c50) && std::isnan(noisy.c80) && std::isnan(noisy.d50) && std::isnan(noisy.ts))
+      << noisy.c50 << " " << noisy.d50 << " " << noisy.ts;
 }
 
 // A DC offset (0.5 % of the first sample's level, −46 dB) is removed before filtering: the decay range and

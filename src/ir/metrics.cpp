@@ -262,6 +262,10 @@ BandMetrics metricsFromEnergy(const std::vector<double>& energy_per_bin, double 
   // The tail's first moment: ∫_tc^∞ t·P_c·e^{−k(t−tc)} dt = tail·(tc + 1/k).
   if (tr.truncated) moment += static_cast<long double>(tr.tail) * (edgeS(nc, bin_s) - zero_s + 1.0 / tr.tail_rate);
   m.ts = static_cast<double>(moment) / total;
+  // A band that clears its noise floor by less than kNoiseMarginDb holds mostly noise: its energy ratios
+  // measure where the file starts and ends, not the room (C50 of a 1 s decay under hum read −5.7 or
+  // −11.7 dB with or without 100 ms of pre-delay), so none is given.
+  if (tr.noise_floor && !(range >= kNoiseMarginDb)) m.c50 = m.c80 = m.d50 = m.ts = kNaN;
   return m;
 }
 

@@ -13,7 +13,8 @@
 // −35 (EDT: −10) dB; C50, C80 = 10·log10(E(0)/E(t_e) − 1); D50 = 1 − E(50 ms)/E(0); Ts = ∫t p²/∫p² with t
 // from the onset. A figure is NaN when it cannot be measured: the usable decay (decay_range_db, above the
 // noise floor) does not reach the bottom of its fitting range plus, when the decay meets a noise floor,
-// 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e. metricsFromSignal filters the signal with its
+// 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e; C50, C80, D50 and Ts also when the band clears
+// its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples).
 // Free functions, no state: thread-safe.
 #include <limits>
