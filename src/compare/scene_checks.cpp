@@ -5,6 +5,7 @@
 #include <set>
 
 #include "diffray/core/error.h"
+#include "diffray/room/checks.h"
 #include "diffray/room/json_fields.h"
 
 namespace diffray::compare {
@@ -57,27 +58,6 @@ bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
   return false;
 }
 
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Ericson, Real-Time Collision Detection §5.1.5.
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // Whether the open segment p→q crosses triangle t (Möller–Trumbore, in double).
 bool segmentCrosses(const Vec3& p, const Vec3& q, const Tri& t) {
   const Vec3 d = q - p, e1 = t.b - t.a, e2 = t.c - t.a, h = d.cross(e2);
@@ -113,7 +93,7 @@ void checkListeners(const room::Room& room) {
                                             ": no level re free field exists there; move them apart");
     for (const Tri& t : solid) {
       if (!inOccluderPlane(room, t, tol)) continue;
-      const double d = (l.position_m - closestOnTriangle(l.position_m, t.a, t.b, t.c)).norm();
+      const double d = (l.position_m - room::closestOnTriangle(l.position_m, t.a, t.b, t.c)).norm();
       if (d < l.radius_m)
         throw core::InputError(room.file, where(l) + ": its sphere (radius " + room::formatNumber(l.radius_m) +
                                               " m) meets " + t.group + " in the occluder's plane, " +
@@ -136,7 +116,7 @@ std::vector<std::string> hiddenListenerWarnings(const room::Room& room) {
       const double dl = (l.position_m - t.a).dot(n), ds = (s.position_m - t.a).dot(n);
       if (!(dl * ds < 0.0)) continue;
       const Vec3 foot = l.position_m - dl * n;
-      if ((closestOnTriangle(foot, t.a, t.b, t.c) - foot).norm() > tol) continue;
+      if ((room::closestOnTriangle(foot, t.a, t.b, t.c) - foot).norm() > tol) continue;
       out.push_back(where(l) + " is outside the room: behind surface " + t.group + ", with source " + s.name +
                     " on its other side (no direct or reflected sound reaches it)");
       break;
