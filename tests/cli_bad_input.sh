@@ -207,6 +207,48 @@ expect_compare_error "CSV into a missing folder"  "folder does not exist" "$room
 expect_compare_error "plot into a missing folder" "folder does not exist" "$rooms/barrier.json" --rays 1000 --plot "$tmp/no/such/dir/cmp.png"
 expect_compare_error "zero rays"            "--rays" "$rooms/barrier.json" --rays 0 "${fast[@]}"
 expect_compare_error "--fine-per-octave 0"  "--fine-per-octave" "$rooms/barrier.json" --rays 1000 --fine-per-octave 0 --csv "$tmp/cmp.csv"
+# Listeners compare cannot give a level for, each refused with one line naming it; --plot takes only .png.
+python3 - "$rooms/barrier.json" "$tmp" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+for name, pos in [("high", [6, 0, 20]), ("atsrc", [-4, 0, 1]), ("onwall", [0, 0, 1]), ("under", [6, 0, -1])]:
+    scene["listeners"] = [{"name": name, "position": pos, "radius_m": 0.15}]
+    json.dump(scene, open(f"{sys.argv[2]}/l_{name}.json", "w"))
+PY
+expect_compare_error "--aim, listener seen past the zone" "listener high at (6, 0, 20) sees source S directly" "$tmp/l_high.json" --aim "${fast[@]}"
+expect_compare_error "listener at the source" "listener atsrc at (-4, 0, 1) coincides with source S" "$tmp/l_atsrc.json" "${fast[@]}"
+expect_compare_error "listener on the screen" "listener onwall at (0, 0, 1): its sphere" "$tmp/l_onwall.json" "${fast[@]}"
+expect_compare_error "--plot x.svg"         "ending in .png" "$rooms/barrier.json" --rays 1000 --plot "$tmp/cmp.svg"
+expect_clean "ir: --plot x.svg"             "out.*" "ending in .png" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 2000 --plot "$tmp/out.svg"
+expect_clean "validate: --plot x.svg"       "out.*" "ending in .png" validate slit-fraunhofer --rays 1000 --plot "$tmp/out.svg"
+# A listener below the ground: a warning naming it, and its missing WBSDF levels are empty CSV cells.
+"$bin" compare "$tmp/l_under.json" --rays 2000 --fine-per-octave 2 --csv "$tmp/under.csv" >"$tmp/stdout" 2>"$tmp/stderr"
+if [ $? -eq 0 ] && grep -q "listener under at (6, 0, -1) is outside the room" "$tmp/stderr" &&
+   grep -q '^under,wbsdf,63,63,,,' "$tmp/under.csv" && ! grep -qi 'inf\|nan' "$tmp/under.csv"; then
+  passes=$((passes + 1)); else echo "FAIL: compare: listener below the ground"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+# The table shows only what was computed; on a door the WBSDF is compared with the incoherent reference.
+"$bin" compare "$rooms/barrier.json" --models wbsdf --rays 2000 >"$tmp/stdout" 2>"$tmp/stderr"
+if [ $? -eq 0 ] && ! grep -q "exact reference\|nan\|utd" "$tmp/stdout" && grep -q "WBSDF 2000 rays" "$tmp/stdout"; then
+  passes=$((passes + 1)); else echo "FAIL: compare: --models wbsdf table"; sed 's/^/    /' "$tmp/stdout"; fails=$((fails + 1)); fi
+"$bin" compare "$rooms/barrier.json" --models utd,exact --fine-per-octave 2 >"$tmp/stdout" 2>"$tmp/stderr"
+if [ $? -eq 0 ] && ! grep -q "WBSDF\|wbsdf\|nan" "$tmp/stdout" && grep -q "utd-exact" "$tmp/stdout"; then
+  passes=$((passes + 1)); else echo "FAIL: compare: --models utd,exact table"; sed 's/^/    /' "$tmp/stdout"; fails=$((fails + 1)); fi
+"$bin" compare "$rooms/doorway.json" --models wbsdf,exact --rays 2000 --fine-per-octave 2 >"$tmp/stdout" 2>"$tmp/stderr"
+if [ $? -eq 0 ] && grep -q "wbsdf-exact-inc" "$tmp/stdout" && ! grep -q "wbsdf-exact " "$tmp/stdout"; then
+  passes=$((passes + 1)); else echo "FAIL: compare: door table heading"; sed 's/^/    /' "$tmp/stdout"; fails=$((fails + 1)); fi
+# --plot draws every listener: ten listeners and eight bands make 18 panels, 6 rows of 360 px (the old
+# cap of six listeners gave 5 rows).
+if command -v gnuplot >/dev/null 2>&1; then
+  python3 - "$rooms/barrier.json" "$tmp/ten.json" <<'PY'
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["listeners"] = [{"name": f"L{i}", "position": [6, 0, 0.5 + 0.6 * i], "radius_m": 0.15} for i in range(10)]
+json.dump(scene, open(sys.argv[2], "w"))
+PY
+  "$bin" compare "$tmp/ten.json" --rays 2000 --fine-per-octave 2 --plot "$tmp/ten.png" >/dev/null 2>"$tmp/stderr"
+  if [ "$(python3 -c "import struct,sys; print(struct.unpack('>I', open(sys.argv[1],'rb').read()[20:24])[0])" "$tmp/ten.png" 2>/dev/null)" = "2160" ]; then
+    passes=$((passes + 1)); else echo "FAIL: compare: --plot did not draw all ten listeners"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+fi
 # The good path: JSON lines with the documented keys, every model present, and a CSV with a header and the
 # same rows.
 "$bin" compare "$rooms/barrier.json" --aim --rays 20000 --fine-per-octave 2 --json --csv "$tmp/cmp.csv" \

@@ -4,6 +4,7 @@
 // a CSV file and a PNG of level against frequency and against the listener's angle past the shadow
 // boundary. Any scene file works (rooms/README.md, "occluders"); the exact reference exists for one edge or
 // barrier (Macdonald's half-plane) or one door or slit (Rayleigh–Sommerfeld).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "diffray/cli/commands.h"
 #include "diffray/cli/plot.h"
+#include "diffray/compare/scene_checks.h"
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
@@ -54,30 +56,88 @@ double bandLevel(const compare::SceneComparison& c, int l, const std::string& mo
   return NAN;
 }
 
-void printTable(const room::Room& room, const compare::SceneComparison& c) {
-  const bool incoherent = !std::isnan(bandLevel(c, 0, "exact-incoherent-floor", room.bands.label(0)));
-  const std::string ref_w = incoherent ? "exact-incoherent-floor" : "exact";
-  std::printf("%s: exact reference: %s\n", room.name.c_str(), c.exact_note.c_str());
+// Which models the comparison holds rows of (what was asked for and could be computed).
+struct Present {
+  bool wbsdf = false, utd = false, exact = false, incoherent = false;
+};
+
+Present presentModels(const compare::SceneComparison& c) {
+  Present p;
+  for (const auto& r : c.rows) {
+    p.wbsdf = p.wbsdf || r.model == "wbsdf";
+    p.utd = p.utd || r.model == "utd";
+    p.exact = p.exact || r.model == "exact";
+    p.incoherent = p.incoherent || r.model == "exact-incoherent-floor";
+  }
+  return p;
+}
+
+void printTable(const room::Room& room, const compare::SceneComparison& c, bool exact_asked) {
+  const Present p = presentModels(c);
+  // On a door with a floor the WBSDF (an energy tracer) is compared with the incoherent-floor reference.
+  const std::string ref_w = p.incoherent ? "exact-incoherent-floor" : "exact";
+  const char* w_head = p.incoherent ? "wbsdf-exact-inc" : "wbsdf-exact";
+  std::printf("%s", room.name.c_str());
+  if (exact_asked) std::printf(": exact reference: %s", c.exact_available ? c.exact_note.c_str() : ("none: " + c.exact_note).c_str());
+  std::printf("\n");
   for (std::size_t l = 0; l < room.listeners.size(); ++l) {
     const room::Listener& li = room.listeners[l];
+    const int il = static_cast<int>(l);
     std::printf("\nlistener %s at (%.2f, %.2f, %.2f) m", li.name.c_str(), li.position_m.x(), li.position_m.y(), li.position_m.z());
     if (c.shadow_angle_deg[l]) std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
-    std::printf("\n%8s %16s %9s %9s", "band Hz", "wbsdf dB", "utd dB", "exact dB");
-    if (incoherent) std::printf(" %11s", "exact-inc dB");
-    std::printf(" %13s %11s\n", "wbsdf-exact", "utd-exact");
+    std::printf("\n%8s", "band Hz");
+    if (p.wbsdf) std::printf(" %16s", "wbsdf dB");
+    if (p.utd) std::printf(" %9s", "utd dB");
+    if (p.exact) std::printf(" %9s", "exact dB");
+    if (p.incoherent) std::printf(" %12s", "exact-inc dB");
+    if (p.wbsdf && p.exact) std::printf(" %15s", w_head);
+    if (p.utd && p.exact) std::printf(" %11s", "utd-exact");
+    std::printf("\n");
     for (int b = 0; b < room.bands.size(); ++b) {
       const std::string band = room.bands.label(b);
       double se = NAN;
       for (const auto& r : c.rows)
-        if (r.band && r.listener == static_cast<int>(l) && r.model == "wbsdf" && r.band_label == band) se = r.std_error_db;
-      const double w = bandLevel(c, static_cast<int>(l), "wbsdf", band), u = bandLevel(c, static_cast<int>(l), "utd", band);
-      const double e = bandLevel(c, static_cast<int>(l), "exact", band), ew = bandLevel(c, static_cast<int>(l), ref_w, band);
-      std::printf("%8s %9.2f ±%5.2f %9.2f %9.2f", band.c_str(), w, se, u, e);
-      if (incoherent) std::printf(" %11.2f", ew);
-      std::printf(" %13.2f %11.2f\n", w - ew, u - e);
+        if (r.band && r.listener == il && r.model == "wbsdf" && r.band_label == band) se = r.std_error_db;
+      const double w = bandLevel(c, il, "wbsdf", band), u = bandLevel(c, il, "utd", band);
+      const double e = bandLevel(c, il, "exact", band), ew = bandLevel(c, il, ref_w, band);
+      std::printf("%8s", band.c_str());
+      if (p.wbsdf) std::printf(" %9.2f ±%5.2f", w, se);
+      if (p.utd) std::printf(" %9.2f", u);
+      if (p.exact) std::printf(" %9.2f", e);
+      if (p.incoherent) std::printf(" %12.2f", ew);
+      if (p.wbsdf && p.exact) std::printf(" %15.2f", w - ew);
+      if (p.utd && p.exact) std::printf(" %11.2f", u - e);
+      std::printf("\n");
     }
   }
-  for (const auto& w : c.warnings) std::fprintf(stderr, "diffray: warning: %s\n", w.c_str());
+}
+
+// The timing line: only the models that ran.
+void printTimes(const compare::SceneComparison& c) {
+  const Present p = presentModels(c);
+  std::string line;
+  char buf[96];
+  if (p.wbsdf) {
+    std::snprintf(buf, sizeof buf, "WBSDF %llu rays in %.2f s", static_cast<unsigned long long>(c.rays), c.wbsdf_seconds);
+    line += buf;
+  }
+  if (p.utd) {
+    std::snprintf(buf, sizeof buf, "%sUTD %.2f s", line.empty() ? "" : ", ", c.utd_seconds);
+    line += buf;
+  }
+  if (p.exact) {
+    std::snprintf(buf, sizeof buf, "%sexact %.2f s", line.empty() ? "" : ", ", c.exact_seconds);
+    line += buf;
+  }
+  if (!line.empty()) std::printf("\n%s\n", line.c_str());
+}
+
+// A CSV cell: the number, or empty when it is missing (−inf level of a silent WBSDF band, its undefined error).
+std::string cell(double v) {
+  if (!std::isfinite(v)) return "";
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 void writeCompareCsv(const std::string& path, const room::Room& room, const compare::SceneComparison& c) {
@@ -85,7 +145,7 @@ void writeCompareCsv(const std::string& path, const room::Room& room, const comp
     out << "listener,model,freq_hz,band,level_db_re_free_field,std_error_db,angle_past_shadow_boundary_deg\n";
     for (const auto& r : c.rows) {
       out << room.listeners[r.listener].name << ',' << r.model << ',' << r.freq_hz << ',' << (r.band ? r.band_label : "")
-          << ',' << r.level_db << ',' << r.std_error_db << ',';
+          << ',' << cell(r.level_db) << ',' << cell(r.std_error_db) << ',';
       if (c.shadow_angle_deg[r.listener]) out << *c.shadow_angle_deg[r.listener];
       out << '\n';
     }
@@ -119,10 +179,11 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(o->scene, &warnings);
     checkOutputFiles({o->csv, o->plot});
-    if (!o->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    compare::checkListeners(room);  // before the loader's warnings: a refused listener gives one line
+    checkPlotOption("--plot", o->plot);
     // Comparison scenes are usually open (a barrier on the ground, a wall in free field): the room checks'
-    // warnings about an open mesh and listeners "outside the room" do not apply to them.
+    // warnings about an open mesh and listeners "outside the room" do not apply to them. A listener hidden
+    // behind a surface (below the ground) is warned about by compareScene instead (compare/scene_checks.h).
     for (const auto& w : warnings)
       if (w.find("is not closed") == std::string::npos && w.find("is outside the room") == std::string::npos)
         std::cerr << "diffray: warning: " << w << "\n";
@@ -136,6 +197,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
     const compare::SceneComparison c = compare::compareScene(room, co);
     progress.finish();
+    for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << w << "\n";
     if (!o->plot.empty()) writeComparePlot(o->plot, room, c);
     if (!o->csv.empty()) writeCompareCsv(o->csv, room, c);
     if (common.json) {
@@ -152,9 +214,8 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       }
       std::cout.flush();
     } else {
-      printTable(room, c);
-      std::printf("\nWBSDF %llu rays in %.2f s, UTD %.2f s, exact %.2f s\n", static_cast<unsigned long long>(c.rays),
-                  c.wbsdf_seconds, c.utd_seconds, c.exact_seconds);
+      printTable(room, c, std::find(co.models.begin(), co.models.end(), "exact") != co.models.end());
+      printTimes(c);
     }
     return 0;
   };

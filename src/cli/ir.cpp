@@ -103,8 +103,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                                 : opts->out;
     checkOutputFile(wav, ".wav");
     checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot});
-    if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    checkPlotOption("--plot", opts->plot);
     // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the
     // room file itself (`cd rooms && diffray ir shoebox.json` destroyed shoebox.json).
     for (const char* ext : {".wav", ".json", ".csv"}) {

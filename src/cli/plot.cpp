@@ -66,6 +66,14 @@ void runGnuplot(const std::string& option, const std::string& png_path,
 
 std::string gnuplotQuoted(const std::string& s) { return quoted(s); }
 
+void checkPlotOption(const std::string& option, const std::string& path) {
+  if (path.empty()) return;
+  if (fs::path(path).extension() != ".png")
+    throw core::InputError(option, path + ": the plot is a PNG image: give a file name ending in .png");
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    throw core::InputError(option, "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+}
+
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results) {
   runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
   const fs::path dir(dir_name);
@@ -161,7 +169,7 @@ namespace diffray::cli {
 void writeComparePlot(const std::string& png_path, const room::Room& room, const compare::SceneComparison& c) {
   runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
     const fs::path dir(dir_name);
-    const int nl = std::min<int>(6, static_cast<int>(room.listeners.size()));
+    const int nl = static_cast<int>(room.listeners.size());
     bool angles = room.listeners.size() > 1;
     for (const auto& a : c.shadow_angle_deg) angles = angles && a.has_value();
     const int nb = room.bands.size();

@@ -163,8 +163,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
     }
     // Outputs are checked before the (possibly long) run: a missing folder or gnuplot fails at once.
     checkOutputFiles({opts->csv, opts->plot});
-    if (!opts->plot.empty() && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-      throw core::InputError("--plot", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+    checkPlotOption("--plot", opts->plot);
     std::vector<validate::CaseResult> results;
     bool all_passed = true;
     for (std::size_t i = 0; i < chosen.size(); ++i) {

@@ -94,7 +94,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--spacing", o->spacing_m, "slit spacing, centre to centre (m)")->capture_default_str();
   sub->add_option("--count", o->count, "number of slits")->capture_default_str();
   sub->add_option("--period", o->period_m, "grating period (m)")->capture_default_str();
-  sub->add_option("--modulation", o->modulation, "grating phase modulation m")->capture_default_str();
+  sub->add_option("--modulation", o->modulation, "grating phase modulation m: order q carries the efficiency J_q(m/2)^2")->capture_default_str();
   sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m, > 0; 0 = 20 λ)");
   sub->add_option("--u-range", o->u_range_per_m,
                   "half-range of tabulated u' (cycles/m; 0 = 2/λ; larger values are clamped to 2/λ, every "

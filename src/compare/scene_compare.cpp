@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "diffray/compare/point_models.h"
+#include "diffray/compare/scene_checks.h"
 #include "diffray/compare/wbsdf_levels.h"
 #include "diffray/core/error.h"
 #include "diffray/room/air.h"
@@ -59,7 +60,7 @@ std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source,
     };
     const double side = (source - e0).dot(o.normal) >= 0 ? 1.0 : -1.0;
     const double phi0 = angle(source, side), phi = angle(listener, side);
-    return (phi - core::kPi - phi0) * 180.0 / core::kPi;
+    return wrapDegrees((phi - core::kPi - phi0) * 180.0 / core::kPi);
   }
   if (o.x.kind == Kind::Opening || o.x.kind == Kind::Slits) {
     // In the plane spanned by ex and the normal: each side edge's boundary continues the line from the
@@ -76,15 +77,17 @@ std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source,
       const double boundary = std::atan2(jamb - xs, -zs), seen = std::atan2(xl - jamb, zl);
       worst = std::max(worst, jamb > 0 ? seen - boundary : boundary - seen);
     }
-    return worst * 180.0 / core::kPi;
+    return wrapDegrees(worst * 180.0 / core::kPi);
   }
   return std::nullopt;
 }
 
 SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
   if (room.sources.empty() || room.listeners.empty()) throw core::InputError(room.file, "needs a source and a listener");
+  checkListeners(room);
   const double c = room::speedOfSound(room.air);
   SceneComparison out;
+  out.warnings = hiddenListenerWarnings(room);
   if (room.sources.size() > 1) out.warnings.push_back("the scene has several sources: compare uses the first only");
   for (const room::Listener& l : room.listeners)
     out.shadow_angle_deg.push_back(shadowAngleDeg(room, room.sources[0].position_m, l.position_m));
@@ -118,6 +121,7 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
           w.aim_half_y_m = 0.5 * (hi - lo);
         }
       }
+      checkAimReachesListeners(room, {w.aim_origin, w.aim_ex, w.aim_ey, w.aim_half_x_m, w.aim_half_y_m});
     }
     const WbsdfLevels lv = wbsdfLevels(room, 0, w);
     out.rays = lv.rays;

@@ -21,6 +21,11 @@ namespace diffray::cli {
 void runGnuplot(const std::string& option, const std::string& png_path,
                 const std::function<std::string(const std::string&, const std::string&)>& script_for);
 
+/// The checks every `--plot FILE` option makes before its run: nothing when `path` is empty; else throws
+/// core::InputError when `path` does not end in .png (gnuplot writes PNG data whatever the name) or when
+/// gnuplot is missing.
+void checkPlotOption(const std::string& option, const std::string& path);
+
 /// `s` as a gnuplot single-quoted string (quotes doubled), for titles and file names in scripts.
 std::string gnuplotQuoted(const std::string& s);
 
@@ -32,7 +37,7 @@ void writeValidationPlot(const std::string& png_path, const std::vector<validate
 void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
                     const std::vector<ir::EnergyResponse>& responses);
 
-/// `diffray compare --plot`: one panel per listener (up to six) of level re free field against frequency
+/// `diffray compare --plot`: one panel per listener (every one) of level re free field against frequency
 /// (UTD and exact on the fine grid as lines, band levels as points), then one panel per band of level against
 /// the listeners' angle past the shadow boundary when the scene defines one. Throws core::InputError naming
 /// --plot on failure.

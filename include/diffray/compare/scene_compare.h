@@ -40,14 +40,16 @@ struct LevelRow {
 
 struct SceneComparison {
   std::vector<LevelRow> rows;
-  std::vector<std::optional<double>> shadow_angle_deg;  ///< per listener: + into the shadow
+  std::vector<std::optional<double>> shadow_angle_deg;  ///< per listener: + into the shadow, in (−180, 180]
   std::string exact_note;  ///< the reference's assumption, or why there is none
   bool exact_available = false;
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings;  ///< e.g. listeners hidden behind a surface (compare/scene_checks.h)
   std::uint64_t rays = 0;
   double wbsdf_seconds = 0.0, utd_seconds = 0.0, exact_seconds = 0.0;
 };
 
+/// Throws core::InputError before any model runs for a listener that compare/scene_checks.h refuses (at the
+/// source, on the screen, or, with `aim`, seeing the source past the aim rectangle).
 SceneComparison compareScene(const room::Room& room, const CompareOptions& options);
 
 /// The listener's angle past the shadow boundary of the room's single occluder, seen from the source:

@@ -18,6 +18,8 @@ namespace diffray::room {
 int openEdgeCount(const Room& room);
 /// Whether `p` is inside the enclosure: the parity of crossings along three fixed directions, majority.
 bool insideRoom(const Room& room, const core::Vec3& p);
+/// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, §5.1.5).
+core::Vec3 closestOnTriangle(const core::Vec3& p, const core::Vec3& a, const core::Vec3& b, const core::Vec3& c);
 /// The distance (m) from `p` to the nearest triangle, openings included; +inf for an empty mesh.
 double distanceToSurface(const Room& room, const core::Vec3& p);
 

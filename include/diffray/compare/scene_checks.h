@@ -1,0 +1,39 @@
+#pragma once
+// Listener placements that `diffray compare` cannot give a meaningful level for, found from the scene's
+// geometry alone before any model runs: a listener at the source, a listener whose sphere meets the wall
+// or screen around the occluder, a listener hidden behind a surface (below an absorbing ground), and, for
+// `--aim`, a listener that the source sees directly past the aim rectangle (no aimed ray can reach it, so
+// the WBSDF level would miss its direct sound). Source 0 of the room is the source. Positions in metres,
+// the room's frame. Pure functions of their arguments (brute force over the mesh's triangles).
+#include <string>
+#include <vector>
+
+#include "diffray/room/room.h"
+
+namespace diffray::compare {
+
+/// Throws core::InputError naming the listener when it coincides with source 0 (no level re free field
+/// exists there) or when its sphere meets a surface lying in an occluder's plane outside that occluder's
+/// rectangle: the screen of a barrier or the wall around a door.
+void checkListeners(const room::Room& room);
+
+/// One warning per listener hidden from source 0 behind a surface that is not in an occluder's plane: its
+/// foot on the surface's plane lies inside the surface and the source is on the plane's other side (a
+/// listener below the ground). Every model gives it no sound, or only what leaks round the surface's edges.
+std::vector<std::string> hiddenListenerWarnings(const room::Room& room);
+
+/// The rectangle every aimed WBSDF ray goes through (transport::EmissionTarget's frame).
+struct AimRect {
+  core::Vec3 origin{0, 0, 0}, ex{1, 0, 0}, ey{0, 1, 0};
+  double half_x_m = 0.0, half_y_m = 0.0;
+};
+
+/// `--aim`: throws core::InputError naming the first listener whose straight line from source 0 is blocked
+/// by no surface (the occluders' own rectangles aside) yet does not pass through `aim`: no aimed ray reaches
+/// it directly, so its WBSDF level would lack the direct sound.
+void checkAimReachesListeners(const room::Room& room, const AimRect& aim);
+
+/// The angle `deg` wrapped into (−180°, 180°].
+double wrapDegrees(double deg);
+
+}  // namespace diffray::compare

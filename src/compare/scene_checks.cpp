@@ -1,0 +1,155 @@
+#include "diffray/compare/scene_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "diffray/core/error.h"
+#include "diffray/room/checks.h"
+#include "diffray/room/json_fields.h"
+
+namespace diffray::compare {
+
+using core::Vec3;
+
+namespace {
+
+std::string where(const room::Listener& l) {
+  const Vec3& p = l.position_m;
+  return "listener " + l.name + " at (" + room::formatNumber(p.x()) + ", " + room::formatNumber(p.y()) + ", " +
+         room::formatNumber(p.z()) + ")";
+}
+
+// Length scale of the scene for tolerances (m).
+double sceneScale(const room::Room& room) {
+  double s = 1.0;
+  for (const Vec3& v : room.mesh.vertices) s = std::max(s, v.cwiseAbs().maxCoeff());
+  for (const auto& src : room.sources) s = std::max(s, src.position_m.cwiseAbs().maxCoeff());
+  for (const auto& l : room.listeners) s = std::max(s, l.position_m.cwiseAbs().maxCoeff());
+  return s;
+}
+
+struct Tri {
+  Vec3 a, b, c;
+  std::string group;
+};
+
+// The triangles that stop sound: every mesh triangle except the occluders' own rectangles (where the
+// occluder model takes over) and fully transmitting openings.
+std::vector<Tri> solidTriangles(const room::Room& room) {
+  std::set<std::string> occluder_groups;
+  for (const auto& o : room.occluders) occluder_groups.insert(o.group);
+  std::vector<Tri> out;
+  const auto& m = room.mesh;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const std::string& g = t < room.group_of_triangle.size() ? room.group_of_triangle[t] : std::string();
+    if (occluder_groups.count(g) || room.isOpening(m.object_of_triangle[t])) continue;
+    out.push_back({m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]], m.vertices[m.triangles[t][2]], g});
+  }
+  return out;
+}
+
+// Whether the triangle lies in an occluder's plane (within tol).
+bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
+  for (const auto& o : room.occluders) {
+    const auto off = [&](const Vec3& p) { return std::abs((p - o.origin_m).dot(o.normal)); };
+    if (off(t.a) < tol && off(t.b) < tol && off(t.c) < tol) return true;
+  }
+  return false;
+}
+
+// Whether the open segment p→q crosses triangle t (Möller–Trumbore, in double).
+bool segmentCrosses(const Vec3& p, const Vec3& q, const Tri& t) {
+  const Vec3 d = q - p, e1 = t.b - t.a, e2 = t.c - t.a, h = d.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-300) return false;
+  const Vec3 s = p - t.a;
+  const double u = s.dot(h) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 qv = s.cross(e1);
+  const double v = d.dot(qv) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  const double k = e2.dot(qv) / det;
+  return k > 1e-9 && k < 1.0 - 1e-9;
+}
+
+}  // namespace
+
+double wrapDegrees(double deg) {
+  double a = std::fmod(deg, 360.0);  // (−360, 360)
+  if (a <= -180.0) a += 360.0;
+  if (a > 180.0) a -= 360.0;
+  return a;
+}
+
+void checkListeners(const room::Room& room) {
+  if (room.sources.empty()) return;
+  const room::Source& s = room.sources[0];
+  const double scale = sceneScale(room), tol = 1e-9 * scale;
+  const std::vector<Tri> solid = solidTriangles(room);
+  for (const room::Listener& l : room.listeners) {
+    if ((l.position_m - s.position_m).norm() <= tol)
+      throw core::InputError(room.file, where(l) + " coincides with source " + s.name +
+                                            ": no level re free field exists there; move them apart");
+    for (const Tri& t : solid) {
+      if (!inOccluderPlane(room, t, tol)) continue;
+      const double d = (l.position_m - room::closestOnTriangle(l.position_m, t.a, t.b, t.c)).norm();
+      if (d < l.radius_m)
+        throw core::InputError(room.file, where(l) + ": its sphere (radius " + room::formatNumber(l.radius_m) +
+                                              " m) meets " + t.group + " in the occluder's plane, " +
+                                              room::formatNumber(std::round(d * 1e4) / 1e4) +
+                                              " m from its centre: move it off the screen");
+    }
+  }
+}
+
+std::vector<std::string> hiddenListenerWarnings(const room::Room& room) {
+  std::vector<std::string> out;
+  if (room.sources.empty()) return out;
+  const room::Source& s = room.sources[0];
+  const double tol = 1e-9 * sceneScale(room);
+  const std::vector<Tri> solid = solidTriangles(room);
+  for (const room::Listener& l : room.listeners) {
+    for (const Tri& t : solid) {
+      if (inOccluderPlane(room, t, tol)) continue;
+      const Vec3 n = (t.b - t.a).cross(t.c - t.a).normalized();
+      const double dl = (l.position_m - t.a).dot(n), ds = (s.position_m - t.a).dot(n);
+      if (!(dl * ds < 0.0)) continue;
+      const Vec3 foot = l.position_m - dl * n;
+      if ((room::closestOnTriangle(foot, t.a, t.b, t.c) - foot).norm() > tol) continue;
+      out.push_back(where(l) + " is outside the room: behind surface " + t.group + ", with source " + s.name +
+                    " on its other side (no direct or reflected sound reaches it)");
+      break;
+    }
+  }
+  return out;
+}
+
+void checkAimReachesListeners(const room::Room& room, const AimRect& aim) {
+  if (room.sources.empty()) return;
+  const room::Source& s = room.sources[0];
+  const Vec3 n = aim.ex.cross(aim.ey).normalized();
+  const std::vector<Tri> solid = solidTriangles(room);
+  for (const room::Listener& l : room.listeners) {
+    const Vec3 p = s.position_m, q = l.position_m;
+    bool blocked = false;
+    for (const Tri& t : solid)
+      if (segmentCrosses(p, q, t)) {
+        blocked = true;
+        break;
+      }
+    if (blocked) continue;
+    const double dp = (p - aim.origin).dot(n), dq = (q - aim.origin).dot(n);
+    bool through = false;
+    if (dp * dq < 0.0) {
+      const Vec3 x = p + dp / (dp - dq) * (q - p) - aim.origin;
+      through = std::abs(x.dot(aim.ex)) <= aim.half_x_m && std::abs(x.dot(aim.ey)) <= aim.half_y_m;
+    }
+    if (!through)
+      throw core::InputError("--aim", where(l) + " sees source " + s.name +
+                                          " directly along a line that misses the occluder's aim rectangle, so no "
+                                          "aimed ray reaches it; run without --aim (or move it)");
+  }
+}
+
+}  // namespace diffray::compare

@@ -1,0 +1,140 @@
+// compare/scene_checks.h and the refusals compareScene makes with them: every expectation is worked out by
+// hand from the shipped scenes' geometry (rooms/barrier.json: a wall in the plane x = 0, base on z = 0 from
+// y = −20 to 20, top edge at z = 3, its diffraction zone 3 m above the edge, source S at (−4, 0, 1) over an
+// absorbing ground z = 0; rooms/doorway.json: a 0.9 × 2.1 m door centred on y = 0 in the wall x = 0, on a
+// rigid floor, source S at (−2.5, 0, 1.5)).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "diffray/compare/scene_checks.h"
+#include "diffray/compare/scene_compare.h"
+#include "diffray/core/error.h"
+#include "diffray/room/scene_file.h"
+
+namespace {
+
+namespace dc = diffray::compare;
+namespace dr = diffray::room;
+using diffray::core::InputError;
+using diffray::core::Vec3;
+
+const std::string kRooms = std::string(DIFFRAY_SOURCE_DIR) + "/rooms/";
+
+// The scene with its listeners replaced by one named `name` at p (radius 0.15 m).
+dr::Room withListener(const std::string& file, const std::string& name, const Vec3& p) {
+  dr::Room room = dr::loadRoom(kRooms + file);
+  room.listeners = {dr::Listener{name, p, 0.15}};
+  return room;
+}
+
+// The message of the InputError `f` throws, or "" when it throws none.
+template <class F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+dc::CompareOptions wbsdfOnly(bool aim) {
+  dc::CompareOptions o;
+  o.models = {"wbsdf"};
+  o.rays = 2000;
+  o.aim = aim;
+  return o;
+}
+
+TEST(CompareSceneChecks, AimRefusesAListenerThatSeesTheSourcePastTheZone) {
+  // (6, 0, 20): the line from S crosses x = 0 at z = 1 + 19·0.4 = 8.6, above the zone (3 to 6 m): no aimed
+  // ray reaches it directly, while the exact half-plane gives it the full direct sound.
+  const dr::Room far = withListener("barrier.json", "high", Vec3(6, 0, 20));
+  const std::string msg = errorOf([&] { dc::compareScene(far, wbsdfOnly(true)); });
+  EXPECT_NE(msg.find("--aim"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("listener high"), std::string::npos) << msg;
+  // Without --aim the same listener is fine.
+  EXPECT_EQ(errorOf([&] { dc::compareScene(far, wbsdfOnly(false)); }), "");
+  // (6, 0, 9): crossing at z = 1 + 8·0.4 = 4.2, inside the zone; (6, 0, 1): crossing at z = 1, on the wall.
+  for (double z : {9.0, 1.0}) {
+    const dr::Room ok = withListener("barrier.json", "ok", Vec3(6, 0, z));
+    EXPECT_EQ(errorOf([&] { dc::compareScene(ok, wbsdfOnly(true)); }), "") << "z=" << z;
+  }
+  // The shipped scenes pass as they are.
+  for (const char* file : {"barrier.json", "doorway.json"})
+    EXPECT_EQ(errorOf([&] { dc::compareScene(dr::loadRoom(kRooms + file), wbsdfOnly(true)); }), "") << file;
+}
+
+TEST(CompareSceneChecks, AimRefusesAListenerOnTheSourcesSideOfTheDoor) {
+  // (−1, 0, 1.5) on the source's side of the wall: its direct sound never goes through the door.
+  const dr::Room room = withListener("doorway.json", "front", Vec3(-1, 0, 1.5));
+  EXPECT_NE(errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); }).find("listener front"), std::string::npos);
+  // (2.5, 3, 1.5) behind the wall: its line crosses x = 0 at y = 1.5, on wall-right (blocked): accepted.
+  const dr::Room hidden = withListener("doorway.json", "behind", Vec3(2.5, 3, 1.5));
+  EXPECT_EQ(errorOf([&] { dc::compareScene(hidden, wbsdfOnly(true)); }), "");
+}
+
+TEST(CompareSceneChecks, AListenerAtTheSourceIsRefusedNamingBoth) {
+  const dr::Room room = withListener("barrier.json", "atsrc", Vec3(-4, 0, 1));
+  const std::string msg = errorOf([&] { dc::checkListeners(room); });
+  EXPECT_NE(msg.find("listener atsrc"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("coincides with source S"), std::string::npos) << msg;
+  // compareScene refuses before any model runs (the exact half-plane would fail on R = 0).
+  dc::CompareOptions o;
+  o.models = {"utd", "exact"};
+  EXPECT_NE(errorOf([&] { dc::compareScene(room, o); }).find("coincides with source S"), std::string::npos);
+}
+
+TEST(CompareSceneChecks, AListenerWhoseSphereMeetsTheScreenIsRefused) {
+  // Radius 0.15 m: on the wall at (0, 0, 1) and 0.1 m in front of it are refused; 0.2 m off is accepted,
+  // and so is a listener in the plane above the edge (0, 0, 4), in open air in the diffraction zone.
+  EXPECT_NE(errorOf([&] { dc::checkListeners(withListener("barrier.json", "onwall", Vec3(0, 0, 1))); })
+                .find("listener onwall"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { dc::checkListeners(withListener("barrier.json", "near", Vec3(0.1, 0, 1))); }), "");
+  EXPECT_EQ(errorOf([&] { dc::checkListeners(withListener("barrier.json", "off", Vec3(0.2, 0, 1))); }), "");
+  EXPECT_EQ(errorOf([&] { dc::checkListeners(withListener("barrier.json", "above", Vec3(0, 0, 4))); }), "");
+  // The doorway: on wall-left refused, in the door's opening accepted.
+  EXPECT_NE(errorOf([&] { dc::checkListeners(withListener("doorway.json", "wall", Vec3(0, -1, 1))); }), "");
+  EXPECT_EQ(errorOf([&] { dc::checkListeners(withListener("doorway.json", "door", Vec3(0, 0, 1))); }), "");
+}
+
+TEST(CompareSceneChecks, AListenerBelowTheGroundIsWarnedAbout) {
+  const auto below = dc::hiddenListenerWarnings(withListener("barrier.json", "underground", Vec3(6, 0, -1)));
+  ASSERT_EQ(below.size(), 1u);
+  EXPECT_NE(below[0].find("listener underground"), std::string::npos) << below[0];
+  EXPECT_NE(below[0].find("outside the room"), std::string::npos) << below[0];
+  // compareScene passes it on.
+  dc::CompareOptions o;
+  o.models = {"utd"};
+  o.fine_per_octave = 1;
+  EXPECT_EQ(dc::compareScene(withListener("barrier.json", "underground", Vec3(6, 0, -1)), o).warnings.size(), 1u);
+  // Above the ground, behind the barrier (its own plane does not count), and the shipped scenes: none.
+  EXPECT_TRUE(dc::hiddenListenerWarnings(withListener("barrier.json", "ok", Vec3(6, 0, 1))).empty());
+  EXPECT_TRUE(dc::hiddenListenerWarnings(dr::loadRoom(kRooms + "barrier.json")).empty());
+  EXPECT_TRUE(dc::hiddenListenerWarnings(dr::loadRoom(kRooms + "doorway.json")).empty());
+  EXPECT_EQ(dc::hiddenListenerWarnings(withListener("doorway.json", "cellar", Vec3(2.5, 0, -0.5))).size(), 1u);
+}
+
+TEST(CompareSceneChecks, WrapDegreesIntoTheHalfOpenCircle) {
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(180.0), 180.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(-180.0), 180.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(540.0), 180.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(-190.0), 170.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(190.0), -170.0);
+  EXPECT_DOUBLE_EQ(dc::wrapDegrees(-179.5), -179.5);
+}
+
+TEST(CompareSceneChecks, ShadowAngleOfAListenerUnderTheEdgeIsWrapped) {
+  // Seen from the edge (0, 0, 3), a listener straight below it is at elevation −90°; the boundary leaves
+  // the edge at atan(2/4): the angle past it is atan(0.5)·180/π + 90 = 116.57° (it printed −243.43°).
+  const dr::Room room = dr::loadRoom(kRooms + "barrier.json");
+  const auto a = dc::shadowAngleDeg(room, room.sources[0].position_m, Vec3(0, 0, 1));
+  ASSERT_TRUE(a.has_value());
+  EXPECT_NEAR(*a, std::atan(0.5) * 180.0 / 3.14159265358979323846 + 90.0, 1e-9);
+}
+
+}  // namespace
