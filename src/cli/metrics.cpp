@@ -31,7 +31,9 @@ struct MetricsOptions {
 core::Bands bandsFor(const std::string& kind, double sample_rate_hz, const std::string& file) {
   const bool third = kind == "third";
   const double top = third ? 10000.0 : 8000.0;
-  for (double hi = top; hi >= 40.0; hi /= third ? std::pow(10.0, 0.1) : 2.0) {
+  const core::Bands all = third ? core::Bands::thirdOctave(50.0, top) : core::Bands::octave(63.0, top);
+  for (int last = all.size() - 1; last >= 0; --last) {
+    const double hi = all.nominalHz(last);
     const core::Bands bands = third ? core::Bands::thirdOctave(50.0, hi) : core::Bands::octave(63.0, hi);
     try {
       const ir::BandFilter fits(bands, sample_rate_hz);
