@@ -30,9 +30,9 @@ constexpr double kResolutionCycles = 2.0;
 // The last round's half-window: kWideFactor times the band's, plus kWideMinBins (tracedParts).
 constexpr int kWideFactor = 8;
 constexpr int kWideMinBins = 10;
-// Jacobi rounds for an arrival's band amplitudes (combine): each brings the bands' analysed energies ~30×
+// Jacobi rounds of matchAnalysedEnergies (arrivals, turned traced parts): each brings the analysed energies ~30×
 // closer (the crossovers' weight against a band's own); eight leave them within ~1e-6.
-constexpr int kArrivalRounds = 8;
+constexpr int kAnalysedEnergyRounds = 8;
 
 /// Which histogram bin each sample falls in (bin i covers [i·bin_s, (i+1)·bin_s)), as sample ranges.
 struct BinSpans {
@@ -197,6 +197,32 @@ std::complex<double> innerProduct(const BandSpectrum& u, const BandSpectrum& v) 
   return sum;
 }
 
+/// Scales x_b (updated in place) such that Σ_{k,l ∈ b ± 1} x_k x_l·coupling(b, k, l) = target_b for every
+/// band with a positive target: what band b of a sum of band parts holds in an octave analysis, the
+/// neighbours' crossovers included. kAnalysedEnergyRounds Jacobi rounds of x_b ← x_b·√(target_b / held_b); the
+/// neighbours' share of a band's energy is a few % at most, so each round gains a factor ~30.
+template <class Coupling>
+void matchAnalysedEnergies(const std::vector<double>& target, std::vector<double>& x, Coupling coupling) {
+  const int nb = static_cast<int>(target.size());
+  std::vector<double> scale(static_cast<size_t>(nb), 1.0);
+  for (int round = 0; round < kAnalysedEnergyRounds; ++round) {
+    for (int b = 0; b < nb; ++b) {
+      scale[b] = 1.0;
+      if (!(target[b] > 0.0)) continue;
+      double held = 0.0;
+      for (int k = std::max(0, b - 1); k <= std::min(nb - 1, b + 1); ++k)
+        for (int l = std::max(0, b - 1); l <= std::min(nb - 1, b + 1); ++l) held += x[k] * x[l] * coupling(b, k, l);
+      if (held > 0.0) scale[b] = std::sqrt(target[b] / held);
+    }
+    for (int b = 0; b < nb; ++b) x[b] *= scale[b];
+  }
+}
+
+/// Index of the (b, k, l) coupling in a [band][k − b + 1][l − b + 1] table.
+size_t couplingIndex(int b, int k, int l) {
+  return static_cast<size_t>(b) * 9 + static_cast<size_t>((k - b + 1) * 3 + (l - b + 1));
+}
+
 /// Per band, the factor that gives band b of Σ_k turn_k·s_k·parts_k (W_b applied to it, as the octave
 /// analysis sees it) the energy band b of Σ_k parts_k has: the analysed energy is
 /// Σ_{k,l} s_k s_l Re(turn_k·conj(turn_l)·C_bkl) with C_bkl = (2/m)·Σ_f W_b²·P_k·conj(P_l) (neighbours
@@ -213,7 +239,7 @@ std::vector<double> analysedEnergyScales(const std::vector<BandSpectrum>& parts,
     return i >= 0 && i < static_cast<int>(parts[k].size()) ? parts[k][i] : std::complex<double>(0.0, 0.0);
   };
   std::vector<std::complex<double>> c(static_cast<size_t>(nb) * 9, {0.0, 0.0});  // [b][k − b + 1][l − b + 1]
-  std::vector<double> target(static_cast<size_t>(nb), 0.0), scale(static_cast<size_t>(nb), 1.0);
+  std::vector<double> target(static_cast<size_t>(nb), 0.0);
   for (int b = 0; b < nb; ++b)
     for (int dk = -1; dk <= 1; ++dk)
       for (int dl = -1; dl <= 1; ++dl) {
@@ -222,26 +248,13 @@ std::vector<double> analysedEnergyScales(const std::vector<BandSpectrum>& parts,
           const int j = gains[b].first + static_cast<int>(i);
           sum += gains[b].w[i] * gains[b].w[i] * at(b + dk, j) * std::conj(at(b + dl, j));
         }
-        c[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)] = 2.0 * sum / static_cast<double>(m);
+        c[couplingIndex(b, b + dk, b + dl)] = 2.0 * sum / static_cast<double>(m);
         target[b] += 2.0 * std::real(sum) / m;
       }
   std::vector<double> s(static_cast<size_t>(nb), 1.0);
-  for (int round = 0; round < kArrivalRounds; ++round) {
-    for (int b = 0; b < nb; ++b) {
-      scale[b] = 1.0;
-      if (!(target[b] > 0.0)) continue;
-      double held = 0.0;
-      for (int dk = -1; dk <= 1; ++dk)
-        for (int dl = -1; dl <= 1; ++dl) {
-          const int k = b + dk, l = b + dl;
-          if (k < 0 || l < 0 || k >= nb || l >= nb) continue;
-          held += s[k] * s[l] *
-                  std::real(turns[k] * std::conj(turns[l]) * c[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)]);
-        }
-      if (held > 0.0) scale[b] = std::sqrt(target[b] / held);
-    }
-    for (int b = 0; b < nb; ++b) s[b] *= scale[b];
-  }
+  matchAnalysedEnergies(target, s, [&](int b, int k, int l) {
+    return std::real(turns[k] * std::conj(turns[l]) * c[couplingIndex(b, k, l)]);
+  });
   return s;
 }
 
@@ -293,11 +306,11 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
           const int j = gains[b].first + static_cast<int>(i);
           sum += gains[b].w[i] * gains[b].w[i] * gainAt(b + dk, j) * gainAt(b + dl, j);
         }
-        weight[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)] = 2.0 * sum / m;
+        weight[couplingIndex(b, b + dk, b + dl)] = 2.0 * sum / m;
       }
   bool first = true;
   std::vector<BandSpectrum> u(static_cast<size_t>(nb));
-  std::vector<double> amplitude(static_cast<size_t>(nb)), target(static_cast<size_t>(nb)), scale(static_cast<size_t>(nb));
+  std::vector<double> amplitude(static_cast<size_t>(nb)), target(static_cast<size_t>(nb));
   std::vector<std::complex<double>> rotation(static_cast<size_t>(nb));
   for (size_t index : order) {
     const Arrival& a = r.arrivals[index];
@@ -326,22 +339,9 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
     // analysis sees) the arrival's energy: a few Jacobi rounds on the weights above. Matching each part's
     // own energy left the lowest band 7 % short (its lower crossover holds its part filtered twice) and
     // bands whose neighbours differ in amplitude off by the crossover's cross terms.
-    for (int round = 0; round < kArrivalRounds; ++round) {
-      for (int b = 0; b < nb; ++b) {
-        scale[b] = 1.0;
-        if (target[b] == 0.0) continue;
-        double held = 0.0;
-        for (int dk = -1; dk <= 1; ++dk)
-          for (int dl = -1; dl <= 1; ++dl) {
-            const int k = b + dk, l = b + dl;
-            if (k < 0 || l < 0 || k >= nb || l >= nb) continue;
-            held += amplitude[k] * amplitude[l] * std::real(rotation[k] * std::conj(rotation[l])) *
-                    weight[static_cast<size_t>(b) * 9 + static_cast<size_t>((dk + 1) * 3 + dl + 1)];
-          }
-        if (held > 0.0) scale[b] = std::sqrt(target[b] / held);
-      }
-      for (int b = 0; b < nb; ++b) amplitude[b] *= scale[b];
-    }
+    matchAnalysedEnergies(target, amplitude, [&](int b, int k, int l) {
+      return std::real(rotation[k] * std::conj(rotation[l])) * weight[couplingIndex(b, k, l)];
+    });
     for (int b = 0; b < nb; ++b) {
       if (target[b] == 0.0) continue;
       const std::complex<double> c = rotation[b] * amplitude[b];
