@@ -27,9 +27,6 @@ constexpr std::uint64_t kStreamPoisson = 0, kStreamFill = 1;
 // the metrics of the shipped rooms no longer move beyond their scatter after three.
 constexpr int kGainIterations = 6;
 constexpr double kResolutionCycles = 2.0;
-// The last round's half-window: kWideFactor times the band's, plus kWideMinBins (tracedParts).
-constexpr int kWideFactor = 8;
-constexpr int kWideMinBins = 10;
 // Jacobi rounds of matchAnalysedEnergies (arrivals, turned traced parts): each brings the analysed energies ~30×
 // closer (the crossovers' weight against a band's own); eight leave them within ~1e-6.
 constexpr int kAnalysedEnergyRounds = 8;
@@ -47,6 +44,14 @@ BinSpans binSpans(int bins, double bin_s, double fs, long samples) {
     s.start.push_back(std::min(samples, static_cast<long>(first)));
   }
   return s;
+}
+
+std::vector<double> bandPass(const BandFilter& filter, RealFft& fft, const std::vector<double>& x, int band) {
+  std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<size_t>(fft.bins()), {0.0, 0.0});
+  fft.forward(x, spectrum);
+  const BandGains g = filter.gains(band, fft.size());
+  for (size_t j = 0; j < g.w.size(); ++j) band_spectrum[g.first + j] = g.w[j] * spectrum[g.first + j];
+  return fft.inverse(band_spectrum, static_cast<long>(x.size()));
 }
 
 double binEnergy(const std::vector<double>& x, const BinSpans& spans, int bin) {
@@ -94,7 +99,8 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
   const double fs = filter.sampleRateHz();
   const long n = samples;
   const int bins = static_cast<int>(std::min<double>(r.bins(), std::ceil(static_cast<double>(n) / (fs * r.bin_s))));
-  if (bins <= 0) return {};
+  std::vector<BandSpectrum> parts;
+  if (bins <= 0) return parts;
   const BinSpans spans = binSpans(bins, r.bin_s, fs, n);
   std::vector<double> d = poissonDiracs(n, fs, volume_m3, c, seed);
   core::Rng fill(seed, kStreamFill);
@@ -107,77 +113,47 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
     const long at = std::min(b - 1, a + static_cast<long>(fill.uniform() * static_cast<double>(b - a)));
     d[at] = fill.uniform() < 0.5 ? -1.0 : 1.0;
   }
-  // Per band k: each Dirac weighted by g_k(bin), first √(E_k(bin) / Diracs in the bin) (so a sparse early
-  // Dirac carries its bin's energy as a whole, unchopped wavelet), band-passed by W_k: the band part. The
-  // gains act on the Diracs before the filter, never on the filtered signal: a gain that steps from bin
-  // to bin multiplies the signal by a staircase whose sidebands (kHz apart at 1 ms bins) spill a slowly
-  // decaying band into its neighbours (measured: T30 at 8 kHz read 20 % long in the shoebox, where 4 kHz
-  // decays twice as slowly).
-  // The gains are then corrected, all bands at once, by what band b of the whole response holds: W_b
-  // applied to the sum of the parts (what the metrics and any octave analysis of the WAV see), over a
-  // window of the band's time resolution around each bin (synthesis.h). Matching each part's own energy
-  // instead left the octave analysis of the response 3–9 % high from 250 Hz to 2 kHz and 7 % low at
-  // 63 Hz (a smooth 1 s decay, 4 seeds): in a crossover a band also holds its neighbour's part, and the
-  // lowest band's lower crossover holds its own part twice filtered.
-  // The last round's window is kWideFactor times wider: the narrow rounds chase the noise of the Dirac
-  // draw (a window of 2 cycles of the band holds a few degrees of freedom, and the fit stalls near
-  // 14 % rms per window) and, by Jensen's inequality, drift upwards a little each round (+8 % after six
-  // at 250 Hz); the wide round takes the drift out without undoing the fine envelope.
+  // Per band: each Dirac weighted by g(bin), first √(E_b(bin) / Diracs in the bin) (so a sparse early Dirac
+  // carries its bin's energy as a whole, unchopped wavelet), band-passed; then g is corrected by the ratio
+  // of the histogram's energy to the band signal's over a window of the band's time resolution (see
+  // synthesis.h for why not bin by bin) and the Diracs filtered again. The gains act on the Diracs before
+  // the filter, never on the filtered signal: a gain that steps from bin to bin multiplies the signal by a
+  // staircase whose sidebands (kHz apart at 1 ms bins) spill a slowly decaying band into its neighbours
+  // (measured: T30 at 8 kHz read 20 % long in the shoebox, where 4 kHz decays twice as slowly).
   const int nb = r.bands.size();
   std::vector<int> count(static_cast<size_t>(bins), 0);
   for (int i = 0; i < bins; ++i)
     for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) count[i] += d[s] != 0.0;
-  std::vector<BandGains> band(static_cast<size_t>(nb));
-  std::vector<std::vector<double>> e(static_cast<size_t>(nb)), g(static_cast<size_t>(nb));
-  std::vector<int> half(static_cast<size_t>(nb));
+  std::vector<double> weighted(static_cast<size_t>(n));
+  std::vector<double> x(static_cast<size_t>(bins)), e(static_cast<size_t>(bins)), g(static_cast<size_t>(bins));
   for (int k = 0; k < nb; ++k) {
-    band[k] = filter.gains(k, fft.size());
-    e[k].resize(static_cast<size_t>(bins));
-    g[k].resize(static_cast<size_t>(bins));
     for (int i = 0; i < bins; ++i) {
-      e[k][i] = std::max(0.0, r.traced[k][i]);
-      g[k][i] = count[i] > 0 ? std::sqrt(e[k][i] / count[i]) : 0.0;
+      e[i] = std::max(0.0, r.traced[k][i]);
+      g[i] = count[i] > 0 ? std::sqrt(e[i] / count[i]) : 0.0;
     }
     const double bandwidth_hz = r.bands.upperHz(k) - r.bands.lowerHz(k);
-    half[k] = static_cast<int>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * r.bin_s)));
-  }
-  std::vector<double> weighted(static_cast<size_t>(n)), x(static_cast<size_t>(bins));
-  std::vector<std::complex<double>> spectrum, sum(static_cast<size_t>(fft.bins()));
-  std::vector<BandSpectrum> parts(static_cast<size_t>(nb));
-  for (int it = 0;; ++it) {
-    // The parts W_k·FFT(g_k·d), and their sum.
-    std::fill(sum.begin(), sum.end(), std::complex<double>(0.0, 0.0));
-    for (int k = 0; k < nb; ++k) {
+    const int half = static_cast<int>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * r.bin_s)));
+    std::vector<double> db;
+    for (int it = 0;; ++it) {
+      std::fill(weighted.begin(), weighted.end(), 0.0);
       for (int i = 0; i < bins; ++i)
-        for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) weighted[s] = g[k][i] * d[s];
-      std::fill(weighted.begin() + spans.start[bins], weighted.end(), 0.0);
-      fft.forward(weighted, spectrum);
-      const BandGains& w = band[k];
-      parts[k].resize(w.w.size());
-      for (size_t j = 0; j < w.w.size(); ++j) {
-        parts[k][j] = w.w[j] * spectrum[w.first + j];
-        sum[w.first + j] += parts[k][j];
-      }
-    }
-    if (it == kGainIterations) break;
-    const bool wide = it == kGainIterations - 1;
-    for (int k = 0; k < nb; ++k) {
-      // Band k of the whole response, W_k·Σ parts, silenced where combine() silences it.
-      const BandGains& w = band[k];
-      std::fill(spectrum.begin(), spectrum.end(), std::complex<double>(0.0, 0.0));
-      for (size_t j = 0; j < w.w.size(); ++j) spectrum[w.first + j] = w.w[j] * sum[w.first + j];
-      std::vector<double> db = fft.inverse(spectrum, n);
-      std::fill(db.begin(), db.begin() + std::min(quiet, n), 0.0);
+        for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) weighted[s] = g[i] * d[s];
+      db = bandPass(filter, fft, weighted, k);
+      if (it == kGainIterations) break;
+      std::fill(db.begin(), db.begin() + std::min(quiet, n), 0.0);  // silenced in the end (combine)
       for (int i = 0; i < bins; ++i) x[i] = binEnergy(db, spans, i);
-      const int h = wide ? kWideFactor * half[k] + kWideMinBins : half[k];
       for (int i = 0; i < bins; ++i) {
-        if (e[k][i] == 0.0) continue;
-        const int lo = std::max(0, i - h), hi = std::min(bins - 1, i + h);
+        if (e[i] == 0.0) continue;
+        const int lo = std::max(0, i - half), hi = std::min(bins - 1, i + half);
         double xs = 0.0, es = 0.0;
-        for (int j = lo; j <= hi; ++j) xs += x[j], es += e[k][j];
-        if (xs > 0.0) g[k][i] *= std::sqrt(es / xs);
+        for (int j = lo; j <= hi; ++j) xs += x[j], es += e[j];
+        if (xs > 0.0) g[i] *= std::sqrt(es / xs);
       }
     }
+    std::vector<std::complex<double>> spectrum;
+    fft.forward(db, spectrum);
+    const BandGains band = filter.gains(k, fft.size());
+    parts.emplace_back(spectrum.begin() + band.first, spectrum.begin() + band.first + static_cast<long>(band.w.size()));
   }
   return parts;
 }
@@ -352,8 +328,8 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
     }
     if (first && orthogonal) {
       // The traced part (all of its envelope kept: a rotation of the carrier) made orthogonal to it, each
-      // band by its own turn, and rescaled so that the octave analysis still finds the energies tracedParts
-      // matched (the turns change the crossovers' cross terms between neighbouring parts).
+      // band by its own turn, and rescaled so that the octave analysis finds the energies it found before
+      // the turns (they change the crossovers' cross terms between neighbouring parts).
       std::vector<std::complex<double>> turns;
       for (size_t b = 0; b < traced.size(); ++b) turns.push_back(orthogonalRotation(innerProduct(traced[b], part[b])));
       const std::vector<double> scales = analysedEnergyScales(traced, turns, gains, m);

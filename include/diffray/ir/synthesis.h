@@ -3,23 +3,24 @@
 //
 // Contract. The output p (sample 0 at emission, sample_rate_hz) follows the convention that Σ p_b[n]² over
 // a span is the energy (J/m²) of that span in band b, p_b being band b of p (BandFilter::split, as the
-// metrics analyse it):
+// metrics analyse it), exactly for the arrivals and to within the bias noted for the traced part:
 //  * Traced (diffuse) part: a Poisson sequence of Diracs with random signs and rate
 //    μ(t) = min(4πc³t²/V, 10⁴ s⁻¹) (the density of image sources at time t in a room of volume V). Per
-//    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter (the
-//    band part); the gains start at √(E_b(bin)/Diracs in its bin) and are corrected, all bands at once
-//    (six rounds, each a new filtering of the weighted Diracs), until band b of the whole response (W_b
-//    applied to the sum of the parts: what an octave analysis of the WAV, and the metrics, see) holds
-//    the histogram's energy over a window of w_b bins around each bin; w_b spans 2 cycles of the band's
-//    bandwidth (w = 1, i.e. bin by bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz
-//    octaves at 1 ms), and the last round's window is 8 w_b + 20 bins wide, which takes out the slow
-//    drift the narrow rounds leave. Why not bin by bin everywhere: a band of bandwidth B cannot hold an
-//    envelope finer than ~1/B. Why gains on the
+//    band, each Dirac is weighted by a gain per bin and band-passed by the zero-phase BandFilter; the
+//    gains start at √(E_b(bin)/Diracs in its bin) and are corrected (six rounds, each a new filtering
+//    of the weighted Diracs) until the band part's Σ² over a window of w_b bins around each bin equals the
+//    histogram's energy over that window; w_b spans 2 cycles of the band's bandwidth (w = 1, i.e. bin by
+//    bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz octaves at 1 ms). Why not bin
+//    by bin everywhere: a band of bandwidth B cannot hold an envelope finer than ~1/B. Why gains on the
 //    Diracs rather than on the filtered signal: the band part stays inside its filter's pass band, so no
-//    energy is modulated into the neighbouring bands (synthesis.cpp). Σ p_b² per window therefore matches
+//    energy is modulated into the neighbouring bands (synthesis.cpp). The part's energy per window matches
 //    to the convergence of the rounds, not to rounding. A bin holding energy in which the Poisson draw put
 //    no Dirac gets one at a uniformly drawn time inside it, so that no energy is lost where the rate is
 //    low (the first milliseconds). Negative bin energies (signed-energy noise) are synthesised as zero.
+//    The bands' analysed energies (p_b) exceed what the parts were matched to by 3–10 % from 125 Hz to
+//    2 kHz and fall short by ~7 % at 63 Hz on smooth decays (a band also holds its neighbours' parts in
+//    its crossovers); matching the analysed energies jointly fixed that for octaves but made third-octave
+//    responses' metrics agree worse with the histogram's, and was taken back (2026-11-23).
 //    The traced part is silent before its first bin holding energy (in any band): the zero-phase filters
 //    would ring ahead of an abrupt start (up to a sixth of a low band's energy in a decay that starts at
 //    once), and the onset, time zero of every metric, would be found early. The gains match what is left.
