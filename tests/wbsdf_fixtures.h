@@ -2,9 +2,13 @@
 // Shared oracles of the WBSDF tests (wbsdf_closed_form_test.cpp, wbsdf_table_test.cpp): design.md §1's
 // closed forms written out independently, Gauss–Legendre quadrature with nodes computed here, and the
 // sine integral. They share no code with diffray.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <complex>
+#include <fstream>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "diffray/wbsdf/table.h"
@@ -131,5 +135,12 @@ inline dw::TableOptions optionsFor(double wavelength) {
   return o;
 }
 
+/// Writes `content` to a file in the test's temporary folder, diffray_<tag>_<name>.csv, and returns its path
+/// (profile CSVs for wbsdf::readProfileCsv; a distinct tag per test file keeps parallel tests apart).
+inline std::string writeTempCsv(const std::string& tag, const std::string& name, const std::string& content) {
+  const std::string path = ::testing::TempDir() + "/diffray_" + tag + "_" + name + ".csv";
+  std::ofstream(path) << content;
+  return path;
+}
 
 }  // namespace diffray::testing

@@ -17,6 +17,8 @@
 #include "diffray/wbsdf/profile_csv.h"
 #include "diffray/wbsdf/table.h"
 
+#include "wbsdf_fixtures.h"
+
 namespace dw = diffray::wbsdf;
 using Cx = std::complex<double>;
 
@@ -48,9 +50,7 @@ double tableBand(const dw::WbsdfTable& table, double u_lo, double u_hi) {
 }
 
 std::string writeTemp(const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + "/diffray_wbsdf_profile_" + name + ".csv";
-  std::ofstream(path) << content;
-  return path;
+  return diffray::testing::writeTempCsv("wbsdf_profile", name, content);
 }
 
 }  // namespace

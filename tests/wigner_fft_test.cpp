@@ -15,6 +15,8 @@
 #include "diffray/wbsdf/rough_surface.h"
 #include "diffray/wbsdf/wigner_fft.h"
 
+#include "wbsdf_fixtures.h"
+
 namespace dw = diffray::wbsdf;
 using Cx = std::complex<double>;
 
@@ -295,9 +297,7 @@ TEST(RoughSurface, RejectsBadParameters) {
 
 namespace {
 std::string writeTemp(const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + "/diffray_profile_" + name + ".csv";
-  std::ofstream(path) << content;
-  return path;
+  return diffray::testing::writeTempCsv("profile", name, content);
 }
 }  // namespace
 

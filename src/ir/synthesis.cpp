@@ -199,34 +199,47 @@ size_t couplingIndex(int b, int k, int l) {
   return static_cast<size_t>(b) * 9 + static_cast<size_t>((k - b + 1) * 3 + (l - b + 1));
 }
 
+/// C_bkl = (2/m)·Σ_f W_b(f)²·v_k(f)·conj(v_l(f)) for k, l ∈ b ± 1 (indexed by couplingIndex), where v_k is
+/// given on band k's bins (BandGains::first on) and is 0 elsewhere: how band b of an octave analysis weighs
+/// the products of neighbouring band parts (v = W for a unit pulse, v = the part's spectrum otherwise).
+template <class T>
+std::vector<std::complex<double>> couplings(const std::vector<BandGains>& gains, int m,
+                                            const std::vector<std::vector<T>>& v) {
+  const int nb = static_cast<int>(v.size());
+  const auto at = [&](int k, int j) {
+    if (k < 0 || k >= nb) return std::complex<double>(0.0, 0.0);
+    const int i = j - gains[k].first;
+    return i >= 0 && i < static_cast<int>(v[k].size()) ? std::complex<double>(v[k][i]) : std::complex<double>(0.0, 0.0);
+  };
+  std::vector<std::complex<double>> c(static_cast<size_t>(nb) * 9, {0.0, 0.0});
+  for (int b = 0; b < nb; ++b)
+    for (int k = b - 1; k <= b + 1; ++k)
+      for (int l = b - 1; l <= b + 1; ++l) {
+        std::complex<double> sum(0.0, 0.0);
+        for (size_t i = 0; i < gains[b].w.size(); ++i) {
+          const int j = gains[b].first + static_cast<int>(i);
+          sum += gains[b].w[i] * gains[b].w[i] * at(k, j) * std::conj(at(l, j));
+        }
+        c[couplingIndex(b, k, l)] = 2.0 * sum / static_cast<double>(m);
+      }
+  return c;
+}
+
 /// Per band, the factor that gives band b of Σ_k turn_k·s_k·parts_k (W_b applied to it, as the octave
 /// analysis sees it) the energy band b of Σ_k parts_k has: the analysed energy is
-/// Σ_{k,l} s_k s_l Re(turn_k·conj(turn_l)·C_bkl) with C_bkl = (2/m)·Σ_f W_b²·P_k·conj(P_l) (neighbours
-/// only), solved by Jacobi rounds as for the arrivals. The turns make parts that came from the same
-/// Diracs lose (or gain) their coherent cross terms in the crossovers: up to 6–7 % of a low band's
-/// analysed energy each, so a band read up to −12 % in a single response without this.
+/// Σ_{k,l} s_k s_l Re(turn_k·conj(turn_l)·C_bkl) (couplings of the parts), solved by Jacobi rounds as for
+/// the arrivals. The turns make parts that came from the same Diracs lose (or gain) their coherent cross
+/// terms in the crossovers: up to 6–7 % of a low band's analysed energy each, so a band read up to −12 %
+/// in a single response without this.
 std::vector<double> analysedEnergyScales(const std::vector<BandSpectrum>& parts,
                                          const std::vector<std::complex<double>>& turns,
                                          const std::vector<BandGains>& gains, int m) {
   const int nb = static_cast<int>(parts.size());
-  const auto at = [&](int k, int j) {
-    if (k < 0 || k >= nb) return std::complex<double>(0.0, 0.0);
-    const int i = j - gains[k].first;
-    return i >= 0 && i < static_cast<int>(parts[k].size()) ? parts[k][i] : std::complex<double>(0.0, 0.0);
-  };
-  std::vector<std::complex<double>> c(static_cast<size_t>(nb) * 9, {0.0, 0.0});  // [b][k − b + 1][l − b + 1]
+  const std::vector<std::complex<double>> c = couplings(gains, m, parts);
   std::vector<double> target(static_cast<size_t>(nb), 0.0);
   for (int b = 0; b < nb; ++b)
-    for (int dk = -1; dk <= 1; ++dk)
-      for (int dl = -1; dl <= 1; ++dl) {
-        std::complex<double> sum(0.0, 0.0);
-        for (size_t i = 0; i < gains[b].w.size(); ++i) {
-          const int j = gains[b].first + static_cast<int>(i);
-          sum += gains[b].w[i] * gains[b].w[i] * at(b + dk, j) * std::conj(at(b + dl, j));
-        }
-        c[couplingIndex(b, b + dk, b + dl)] = 2.0 * sum / static_cast<double>(m);
-        target[b] += 2.0 * std::real(sum) / m;
-      }
+    for (int k = std::max(0, b - 1); k <= std::min(nb - 1, b + 1); ++k)
+      for (int l = std::max(0, b - 1); l <= std::min(nb - 1, b + 1); ++l) target[b] += std::real(c[couplingIndex(b, k, l)]);
   std::vector<double> s(static_cast<size_t>(nb), 1.0);
   matchAnalysedEnergies(target, s, [&](int b, int k, int l) {
     return std::real(turns[k] * std::conj(turns[l]) * c[couplingIndex(b, k, l)]);
@@ -266,24 +279,11 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
                    [&](size_t x, size_t y) { return r.arrivals[x].delay_s < r.arrivals[y].delay_s; });
   // The analysis weights of the arrivals' band parts: band b of a pulse Σ_k c_k·A_k·W_k (c_k its band
   // phases) holds (2/m)·Σ_f W_b²·|Σ_k c_k A_k W_k|² = Σ_{k,l} A_k A_l Re(c_k c̄_l)·M_bkl, with
-  // M_bkl = (2/m)·Σ_f W_b² W_k W_l; bands overlap only with their neighbours (k, l ∈ b ± 1).
+  // M_bkl = (2/m)·Σ_f W_b² W_k W_l (the couplings of the filters themselves, real).
   const int nb = r.bands.size();
-  const auto gainAt = [&](int k, int j) {
-    if (k < 0 || k >= nb) return 0.0;
-    const int i = j - gains[k].first;
-    return i >= 0 && i < static_cast<int>(gains[k].w.size()) ? gains[k].w[i] : 0.0;
-  };
-  std::vector<double> weight(static_cast<size_t>(nb) * 9, 0.0);  // [b][k − b + 1][l − b + 1]
-  for (int b = 0; b < nb; ++b)
-    for (int dk = -1; dk <= 1; ++dk)
-      for (int dl = -1; dl <= 1; ++dl) {
-        double sum = 0.0;
-        for (size_t i = 0; i < gains[b].w.size(); ++i) {
-          const int j = gains[b].first + static_cast<int>(i);
-          sum += gains[b].w[i] * gains[b].w[i] * gainAt(b + dk, j) * gainAt(b + dl, j);
-        }
-        weight[couplingIndex(b, b + dk, b + dl)] = 2.0 * sum / m;
-      }
+  std::vector<std::vector<double>> filters;
+  for (const BandGains& g : gains) filters.push_back(g.w);
+  const std::vector<std::complex<double>> weight = couplings(gains, m, filters);
   bool first = true;
   std::vector<BandSpectrum> u(static_cast<size_t>(nb));
   std::vector<double> amplitude(static_cast<size_t>(nb)), target(static_cast<size_t>(nb));
@@ -316,7 +316,7 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
     // own energy left the lowest band 7 % short (its lower crossover holds its part filtered twice) and
     // bands whose neighbours differ in amplitude off by the crossover's cross terms.
     matchAnalysedEnergies(target, amplitude, [&](int b, int k, int l) {
-      return std::real(rotation[k] * std::conj(rotation[l])) * weight[couplingIndex(b, k, l)];
+      return std::real(rotation[k] * std::conj(rotation[l])) * std::real(weight[couplingIndex(b, k, l)]);
     });
     for (int b = 0; b < nb; ++b) {
       if (target[b] == 0.0) continue;
