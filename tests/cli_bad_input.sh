@@ -17,7 +17,9 @@ expect_clean() {  # expect_clean LABEL GLOB PATTERN ARGS...
   local code=$?
   local lines
   lines=$(wc -l <"$tmp/stderr")
+  # (also no staged output, core::OutputFiles's NAME.partPID-N.EXT, whatever the glob)
   if [ "$code" -eq 0 ] || [ "$code" -ge 128 ] || [ "$lines" -ne 1 ] || ls "$tmp"/$glob >/dev/null 2>&1 ||
+     ls "$tmp"/*.part[0-9]*-[0-9]* >/dev/null 2>&1 ||
      { [ -n "$pattern" ] && ! grep -qF -- "$pattern" "$tmp/stderr"; }; then
     echo "FAIL: $label: exit=$code, stderr lines=$lines"; sed 's/^/    /' "$tmp/stderr"
     fails=$((fails + 1))

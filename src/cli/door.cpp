@@ -238,7 +238,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       std::cout << "synthesized the impulse responses at " << synth_fs << " Hz (the room's bands reach past the dry "
                 << "signal's Nyquist frequency) and resampled them to its " << fs << " Hz (libsamplerate)\n";
     // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
-    OutputFiles written;  // none left if a later one fails
+    OutputFiles written;  // replaced together: a later failure leaves the previous files
     std::vector<float> first;
     written.write(opts->out, [&](const std::string& f) {
       first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f);
@@ -289,7 +289,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
     });
-    written.keep();
+    written.commit();
     if (common.json) {
       std::cout << side.dump(2) << std::endl;
       return 0;

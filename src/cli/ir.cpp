@@ -207,8 +207,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"listeners", listeners},
         {"bands", listeners.at(0).at("bands")}};
 
-    // Outputs: each written whole or not at all, and none left if a later one fails (OutputFiles); the
-    // plot first, the likelier to fail.
+    // Outputs: each written whole or not at all, and replaced together (OutputFiles): if a later one fails,
+    // none of this run's is left and a previous run's stay. The plot first, the likelier to fail.
     OutputFiles written;
     if (!opts->plot.empty()) {
       std::vector<std::string> names;
@@ -221,7 +221,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(wav, ".json"), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
     });
-    written.keep();
+    written.commit();
     if (common.json) {
       std::cout << side.dump(2) << std::endl;
     } else {

@@ -90,11 +90,6 @@ void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<s
   }
 }
 
-OutputFiles::~OutputFiles() {
-  if (kept_) return;
-  for (const std::string& path : written_) std::remove(path.c_str());
-}
-
 std::string withExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
 }

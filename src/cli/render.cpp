@@ -119,7 +119,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(o->out, ".json"), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << "\n"; });
     });
-    written.keep();
+    written.commit();
     std::cout << side.dump() << std::endl;
     return 0;
   };

@@ -181,11 +181,11 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       all_passed = all_passed && results.back().passed;
       if (common.json) std::cout << toJson(results.back()).dump() << std::endl;
     }
-    OutputFiles written;  // none left if a later one fails
+    OutputFiles written;  // replaced together: a later failure leaves the previous files
     if (!opts->plot.empty())  // first: the likelier to fail
       written.write(opts->plot, [&](const std::string& f) { writeValidationPlot(f, results); });
     if (!opts->csv.empty()) written.write(opts->csv, [&](const std::string& f) { writeCsv(f, results); });
-    written.keep();
+    written.commit();
     if (!common.json) printTable(results, opts->verbose);
     return all_passed ? 0 : 1;
   };

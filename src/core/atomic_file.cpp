@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "diffray/core/error.h"
@@ -23,6 +24,27 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
     std::remove(tmp.c_str());
     throw;
   }
+}
+
+OutputFiles::~OutputFiles() {
+  for (const auto& [staging, target] : staged_) std::remove(staging.c_str());
+}
+
+void OutputFiles::commit() {
+  while (!staged_.empty()) {
+    const auto [staging, target] = staged_.front();
+    if (std::rename(staging.c_str(), target.c_str()) != 0)
+      throw InputError(target, "cannot rename the finished output into place");  // the destructor cleans up
+    staged_.erase(staged_.begin());
+  }
+}
+
+std::string OutputFiles::stagingName(const std::string& path, std::size_t index) {
+  const std::filesystem::path p(path);
+  std::filesystem::path staged = p;
+  staged.replace_filename(p.stem().string() + ".part" + std::to_string(::getpid()) + "-" + std::to_string(index) +
+                          p.extension().string());
+  return staged.string();
 }
 
 }  // namespace diffray::core

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "diffray/core/atomic_file.h"
 #include "diffray/room/room.h"
 
 namespace diffray::cli {
@@ -47,26 +48,8 @@ void checkOutputFile(const std::string& path, const std::string& ext);
 /// of the (non-empty) `inputs`: all of a command's outputs checked before any work.
 void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<std::string>& inputs = {});
 
-/// A command's set of output files: each written (atomically) through write(), and all of them removed again
-/// if the command fails before keep() — so an error never leaves part of the set behind. Not thread-safe.
-class OutputFiles {
- public:
-  OutputFiles() = default;
-  OutputFiles(const OutputFiles&) = delete;
-  OutputFiles& operator=(const OutputFiles&) = delete;
-  ~OutputFiles();
-  /// Calls write_file(path) and records `path` as written.
-  template <class WriteFile>
-  void write(const std::string& path, WriteFile&& write_file) {
-    write_file(path);
-    written_.push_back(path);
-  }
-  void keep() { kept_ = true; }  ///< the command succeeded: leave the files
-
- private:
-  std::vector<std::string> written_;
-  bool kept_ = false;
-};
+/// A command's set of output files, replaced together on commit() (core/atomic_file.h).
+using core::OutputFiles;
 
 /// `path` with its extension replaced by `ext` (".json").
 std::string withExtension(const std::string& path, const std::string& ext);

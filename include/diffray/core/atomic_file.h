@@ -4,11 +4,42 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace diffray::core {
 
 /// Calls `write(stream)` on a temporary file next to `path`, then renames it to `path`.
 /// Throws InputError (naming `path`) if the file cannot be written; nothing is left behind then.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+/// A command's set of output files, replaced together. write() has each file written under a staging name
+/// beside its target (stagingName: the extension kept, for writers that look at it), and commit() renames
+/// them all over their targets once every one is written. If the command fails before commit() (an
+/// exception unwinds this object), the staged files are removed and the targets are left as they were:
+/// a failed rerun keeps the previous run's outputs, and a first run leaves nothing. Not thread-safe.
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();
+  /// Calls write_file(staging path) for the target `path`; the file appears at `path` on commit().
+  template <class WriteFile>
+  void write(const std::string& path, WriteFile&& write_file) {
+    const std::string staging = stagingName(path, staged_.size());
+    staged_.emplace_back(staging, path);
+    write_file(staging);
+  }
+  /// Renames every staged file over its target. Throws InputError naming the target if a rename fails
+  /// (the files renamed before it stay replaced; the rest are removed).
+  void commit();
+  /// The staging name of output number `index` of this process for `path`: "dir/name.ext" →
+  /// "dir/name.part<pid>-<index>.ext".
+  static std::string stagingName(const std::string& path, std::size_t index);
+
+ private:
+  std::vector<std::pair<std::string, std::string>> staged_;  ///< (staging, target), not yet renamed
+};
 
 }  // namespace diffray::core
