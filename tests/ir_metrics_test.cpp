@@ -8,6 +8,7 @@
 
 #include "diffray/core/bands.h"
 #include "diffray/core/error.h"
+#include "diffray/ir/band_filter.h"
 #include "diffray/ir/metrics.h"
 
 namespace diffray::ir {
@@ -261,6 +262,35 @@ TEST(IrMetrics, JsonAndTableShowMissingFiguresAsNullAndDash) {
   EXPECT_NE(table.find("   3.05"), std::string::npos);
   EXPECT_NE(table.find("      -"), std::string::npos);
   EXPECT_NE(table.find("not measurable"), std::string::npos);
+}
+
+// A band whose analysis filter rings longer than the response lasts after its onset is not measured: its
+// band signal is the filter's own response cut off at the file's end. A 21-sample click read a negative
+// decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s before. A decay 0.2 s long is
+// measured in the bands whose filters ring for less (BandFilter::ringSamples(b): 0.15 s from 250 Hz up at
+// 48 kHz) and in no other.
+TEST(IrMetrics, NoBandIsMeasuredFromLessThanItsFilterRings) {
+  const double fs = 48000.0;
+  const core::Bands bands = core::Bands::octave();
+  std::vector<double> click(21, 0.0);
+  click[3] = 1.0;
+  for (const BandMetrics& m : metricsFromSignal(click, fs, bands)) {
+    EXPECT_TRUE(m.shorter_than_filter);
+    EXPECT_TRUE(std::isnan(m.decay_range_db) && std::isnan(m.ts) && std::isnan(m.edt) && std::isnan(m.d50));
+  }
+  const std::vector<double> decay = noiseDecay(fs, 0.1, 0.2, 0, 3);
+  const std::vector<BandMetrics> m = metricsFromSignal(decay, fs, bands);
+  const BandFilter filter(bands, fs);
+  for (int b = 0; b < bands.size(); ++b) {
+    SCOPED_TRACE(bands.label(b));
+    const bool long_enough = filter.ringSamples(b) <= static_cast<long>(decay.size());
+    EXPECT_EQ(m[b].shorter_than_filter, !long_enough);
+    EXPECT_EQ(std::isfinite(m[b].decay_range_db), long_enough);
+  }
+  EXPECT_FALSE(m[bands.size() - 1].shorter_than_filter);  // the top band is measured
+  EXPECT_TRUE(m[0].shorter_than_filter);                   // the 63 Hz band (0.39 s) is not
+  EXPECT_EQ(filter.ringSamples(), filter.ringSamples(0));  // the longest ringing is the lowest band's
+  EXPECT_NE(metricsTable(bands, m).find("analysis filter rings"), std::string::npos);
 }
 
 }  // namespace

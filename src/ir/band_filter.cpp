@@ -115,8 +115,14 @@ double BandFilter::coveredLowHz() const { return std::pow(10.0, edge_log_.front(
 double BandFilter::coveredHighHz() const { return std::pow(10.0, edge_log_.back() - half_log_.back()); }
 
 long BandFilter::ringSamples() const {
+  long longest = 0;
+  for (int b = 0; b < bands_.size(); ++b) longest = std::max(longest, ringSamples(b));
+  return longest;
+}
+
+long BandFilter::ringSamples(int band) const {
   double narrowest_hz = 1e300;
-  for (size_t e = 0; e < edge_log_.size(); ++e)
+  for (int e = band; e <= band + 1; ++e)  // edge b is band b's lower edge, edge b + 1 its upper one
     narrowest_hz = std::min(narrowest_hz, std::pow(10.0, edge_log_[e] + half_log_[e]) -
                                               std::pow(10.0, edge_log_[e] - half_log_[e]));
   // A raised-cosine crossover Δf wide gives filter tails that fall as 1/t³ beyond ~1/Δf: at 6/Δf they

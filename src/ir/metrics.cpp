@@ -293,8 +293,19 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
     for (size_t n = 0; n < padded.size(); ++n) broadband[n] += band[n];
   for (double& v : broadband) v *= v;
   const long onset = onsetBin(broadband);
+  // A band whose filter rings for longer than the response lasts after the onset is not measured: its signal
+  // is mostly the filter's own impulse response, cut off at the end of the file (a 21-sample click read a
+  // negative decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s).
+  const long after_onset = onset < 0 ? 0 : static_cast<long>(padded.size()) - onset;
   std::vector<BandMetrics> out;
-  for (std::vector<double>& band : energy) {
+  for (int b = 0; b < static_cast<int>(energy.size()); ++b) {
+    if (onset >= 0 && after_onset < filter.ringSamples(b)) {
+      BandMetrics m;
+      m.shorter_than_filter = true;
+      out.push_back(m);
+      continue;
+    }
+    std::vector<double>& band = energy[static_cast<size_t>(b)];
     for (double& v : band) v *= v;
     out.push_back(metricsFromEnergy(band, 1.0 / sample_rate_hz, onset));
   }
@@ -336,7 +347,7 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   std::snprintf(line, sizeof line, "%7s %7s %7s %7s %7s %7s %7s %7s %9s\n", "band Hz", "T20 s", "T30 s", "EDT s",
                 "C50 dB", "C80 dB", "D50", "Ts ms", "range dB");
   out += line;
-  bool missing = false;
+  bool missing = false, short_band = false;
   const auto cell = [&missing](double v, const char* format) {
     char text[32];
     if (!std::isfinite(v)) {
@@ -348,6 +359,7 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   };
   for (int b = 0; b < bands.size(); ++b) {
     const BandMetrics& m = metrics[b];
+    short_band |= m.shorter_than_filter;
     out += cell(bands.nominalHz(b), "%7g") + " " + cell(m.t20, "%7.3f") + " " + cell(m.t30, "%7.3f") + " " +
            cell(m.edt, "%7.3f") + " " + cell(m.c50, "%7.2f") + " " + cell(m.c80, "%7.2f") + " " +
            cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " + cell(m.decay_range_db, "%7.1f") + "\n";
@@ -355,6 +367,9 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   if (missing)
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
            "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
+  if (short_band)
+    out += "A band with no figures at all lasts less after the onset than its analysis filter rings (0.1-0.4 s "
+           "at 48 kHz): what it holds is mostly the filter's own response.\n";
   return out;
 }
 

@@ -78,6 +78,8 @@ class BandFilter {
   /// How far (samples) the filters ring on either side of an impulse: 6 / the narrowest crossover width in
   /// Hz, beyond which their tails are negligible (what fftLengthFor pads with).
   long ringSamples() const;
+  /// The same for band `band` alone (its two crossovers): the largest of these is ringSamples().
+  long ringSamples(int band) const;
   BandGains gains(int band, int fft_length) const;
 
   /// Every band of x: out[b] has x's length.

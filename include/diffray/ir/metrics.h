@@ -15,7 +15,8 @@
 // noise floor) does not reach the bottom of its fitting range plus, when the decay meets a noise floor,
 // 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e; C50, C80, D50 and Ts also when the band clears
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
-// mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples).
+// mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
+// band whose filter rings for longer than the response lasts after its onset.
 // Free functions, no state: thread-safe.
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -37,6 +38,10 @@ struct BandMetrics {
   double decay_range_db = kNaN;
   /// Where the noise truncation stopped the integral, s after the onset (NaN: not truncated).
   double truncation_s = kNaN;
+  /// metricsFromSignal: the response holds less after its onset than the band filter rings for
+  /// (BandFilter::ringSamples(band)), so its band signal is mostly the filter's own and is cut short; every
+  /// figure is then NaN.
+  bool shorter_than_filter = false;
 };
 
 /// Metrics of one band's energy histogram (J/m² per bin of width bin_s seconds, first bin at time 0).
