@@ -123,3 +123,41 @@ TEST(CoreOutputFiles, FirstRunFailureLeavesNothing) {
   EXPECT_EQ(filesIn(d), 0u);
   fs::remove_all(d);
 }
+
+// A writer's error names the file the user asked for, not the staging file it was writing.
+TEST(CoreOutputFiles, WriterErrorsNameTheTarget) {
+  const fs::path d = freshDir("message");
+  const std::string target = (d / "a.wav").string();
+  try {
+    dc::OutputFiles files;
+    files.write(target, [](const std::string& f) { throw dc::InputError(f, "write failed (" + f + ")"); });
+    FAIL() << "the write should have thrown";
+  } catch (const dc::InputError& e) {
+    EXPECT_EQ(e.where(), target);
+    EXPECT_EQ(std::string(e.what()), target + ": write failed (" + target + ")");
+  }
+  EXPECT_EQ(filesIn(d), 0u);
+  fs::remove_all(d);
+}
+
+// A rename that fails (the target is a folder) is reported naming it; the files not renamed are removed.
+TEST(CoreOutputFiles, FailedCommitNamesTheTargetAndCleansUp) {
+  const fs::path d = freshDir("commitfail");
+  fs::create_directories(d / "b.csv" / "inside");  // a non-empty folder: no file can be renamed over it
+  const std::string a = (d / "a.wav").string(), b = (d / "b.csv").string(), c = (d / "c.json").string();
+  try {
+    dc::OutputFiles files;
+    files.write(a, [](const std::string& f) { writeText(f, "a"); });
+    files.write(b, [](const std::string& f) { writeText(f, "b"); });
+    files.write(c, [](const std::string& f) { writeText(f, "c"); });
+    files.commit();
+    FAIL() << "the commit should have thrown";
+  } catch (const dc::InputError& e) {
+    EXPECT_EQ(e.where(), b);
+  }
+  EXPECT_EQ(contents(a), "a");              // renamed before the failure: stays
+  EXPECT_TRUE(fs::is_directory(b));         // untouched
+  EXPECT_FALSE(fs::exists(c));              // not renamed, and its staged file removed
+  EXPECT_EQ(filesIn(d), 2u);                // a.wav and the folder
+  fs::remove_all(d);
+}

@@ -266,9 +266,9 @@ TEST(IrMetrics, JsonAndTableShowMissingFiguresAsNullAndDash) {
 
 // A band whose analysis filter rings longer than the response lasts after its onset is not measured: its
 // band signal is the filter's own response cut off at the file's end. A 21-sample click read a negative
-// decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s before. A decay 0.2 s long is
-// measured in the bands whose filters ring for less (BandFilter::ringSamples(b): 0.15 s from 250 Hz up at
-// 48 kHz) and in no other.
+// decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s before. A decay 0.25 s long is
+// measured in the bands whose filters ring for less (BandFilter::ringSamples(b): 0.19 s at 125 Hz, 0.15 s
+// above) and not at 63 Hz (0.39 s).
 TEST(IrMetrics, NoBandIsMeasuredFromLessThanItsFilterRings) {
   const double fs = 48000.0;
   const core::Bands bands = core::Bands::octave();
@@ -278,7 +278,7 @@ TEST(IrMetrics, NoBandIsMeasuredFromLessThanItsFilterRings) {
     EXPECT_TRUE(m.shorter_than_filter);
     EXPECT_TRUE(std::isnan(m.decay_range_db) && std::isnan(m.ts) && std::isnan(m.edt) && std::isnan(m.d50));
   }
-  const std::vector<double> decay = noiseDecay(fs, 0.1, 0.2, 0, 3);
+  const std::vector<double> decay = noiseDecay(fs, 0.1, 0.25, 0, 3);
   const std::vector<BandMetrics> m = metricsFromSignal(decay, fs, bands);
   const BandFilter filter(bands, fs);
   for (int b = 0; b < bands.size(); ++b) {
@@ -290,7 +290,9 @@ TEST(IrMetrics, NoBandIsMeasuredFromLessThanItsFilterRings) {
   EXPECT_FALSE(m[bands.size() - 1].shorter_than_filter);  // the top band is measured
   EXPECT_TRUE(m[0].shorter_than_filter);                   // the 63 Hz band (0.39 s) is not
   EXPECT_EQ(filter.ringSamples(), filter.ringSamples(0));  // the longest ringing is the lowest band's
-  EXPECT_NE(metricsTable(bands, m).find("analysis filter rings"), std::string::npos);
+  EXPECT_NE(metricsTable(bands, m).find("short: the file ends"), std::string::npos);
+  EXPECT_EQ(metricsJson(bands, m)["63"]["shorter_than_filter"], true);
+  EXPECT_FALSE(metricsJson(bands, m)["1000"].contains("shorter_than_filter"));
 }
 
 }  // namespace

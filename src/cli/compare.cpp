@@ -198,8 +198,10 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     const compare::SceneComparison c = compare::compareScene(room, co);
     progress.finish();
     for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << w << "\n";
-    if (!o->plot.empty()) writeComparePlot(o->plot, room, c);
-    if (!o->csv.empty()) writeCompareCsv(o->csv, room, c);
+    OutputFiles written;  // replaced together: a later failure leaves the previous files
+    if (!o->plot.empty()) written.write(o->plot, [&](const std::string& f) { writeComparePlot(f, room, c); });
+    if (!o->csv.empty()) written.write(o->csv, [&](const std::string& f) { writeCompareCsv(f, room, c); });
+    written.commit();
     if (common.json) {
       for (const auto& r : c.rows) {
         nlohmann::ordered_json j{{"listener", room.listeners[r.listener].name},

@@ -39,6 +39,17 @@ void OutputFiles::commit() {
   }
 }
 
+void OutputFiles::rethrowNaming(const InputError& e, const std::string& staging, const std::string& path) {
+  const auto renamed = [&](std::string s) {
+    for (std::size_t at = s.find(staging); at != std::string::npos; at = s.find(staging, at + path.size()))
+      s.replace(at, staging.size(), path);
+    return s;
+  };
+  const std::string where = renamed(e.where()), message = renamed(e.what());
+  const std::string prefix = where.empty() ? "" : where + ": ";
+  throw InputError(where, message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size()) : message);
+}
+
 std::string OutputFiles::stagingName(const std::string& path, std::size_t index) {
   const std::filesystem::path p(path);
   std::filesystem::path staged = p;

@@ -121,6 +121,7 @@ long BandFilter::ringSamples() const {
 }
 
 long BandFilter::ringSamples(int band) const {
+  DIFFRAY_CHECK(band >= 0 && band < bands_.size());
   double narrowest_hz = 1e300;
   for (int e = band; e <= band + 1; ++e)  // edge b is band b's lower edge, edge b + 1 its upper one
     narrowest_hz = std::min(narrowest_hz, std::pow(10.0, edge_log_[e] + half_log_[e]) -

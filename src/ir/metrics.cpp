@@ -293,9 +293,11 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
     for (size_t n = 0; n < padded.size(); ++n) broadband[n] += band[n];
   for (double& v : broadband) v *= v;
   const long onset = onsetBin(broadband);
-  // A band whose filter rings for longer than the response lasts after the onset is not measured: its signal
-  // is mostly the filter's own impulse response, cut off at the end of the file (a 21-sample click read a
-  // negative decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s).
+  // A band is not measured when the file ends less than its filter's ringing time after the onset: the
+  // band signal is then cut off while it still holds much of the filter's own response (a 21-sample click
+  // read a negative decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s). This is a test of
+  // the file's length only: a response that is itself shorter than the filter's ringing but sits in a long
+  // enough file is measured, and then reads the filter's decay.
   const long after_onset = onset < 0 ? 0 : static_cast<long>(padded.size()) - onset;
   std::vector<BandMetrics> out;
   for (int b = 0; b < static_cast<int>(energy.size()); ++b) {
@@ -336,6 +338,7 @@ nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<B
     j[bands.label(b)] = {{"t20", value(m.t20)}, {"t30", value(m.t30)}, {"edt", value(m.edt)},
                          {"c50", value(m.c50)}, {"c80", value(m.c80)}, {"d50", value(m.d50)},
                          {"ts", value(m.ts)},   {"decay_range_db", value(m.decay_range_db)}};
+    if (m.shorter_than_filter) j[bands.label(b)]["shorter_than_filter"] = true;
   }
   return j;
 }
@@ -362,14 +365,15 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
     short_band |= m.shorter_than_filter;
     out += cell(bands.nominalHz(b), "%7g") + " " + cell(m.t20, "%7.3f") + " " + cell(m.t30, "%7.3f") + " " +
            cell(m.edt, "%7.3f") + " " + cell(m.c50, "%7.2f") + " " + cell(m.c80, "%7.2f") + " " +
-           cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " + cell(m.decay_range_db, "%7.1f") + "\n";
+           cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " +
+           (m.shorter_than_filter ? std::string("  short") : cell(m.decay_range_db, "%7.1f")) + "\n";
   }
   if (missing)
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
            "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
   if (short_band)
-    out += "A band with no figures at all lasts less after the onset than its analysis filter rings (0.1-0.4 s "
-           "at 48 kHz): what it holds is mostly the filter's own response.\n";
+    out += "short: the file ends sooner after the onset than the band's analysis filter rings (0.15-0.4 s for "
+           "octave bands, up to 1.2 s for third octaves), so the band is not measured.\n";
   return out;
 }
 

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "diffray/core/error.h"
+
 namespace diffray::core {
 
 /// Calls `write(stream)` on a temporary file next to `path`, then renames it to `path`.
@@ -24,21 +26,28 @@ class OutputFiles {
   OutputFiles(const OutputFiles&) = delete;
   OutputFiles& operator=(const OutputFiles&) = delete;
   ~OutputFiles();
-  /// Calls write_file(staging path) for the target `path`; the file appears at `path` on commit().
+  /// Calls write_file(staging path) for the target `path`; the file appears at `path` on commit(). An
+  /// InputError from the writer is rethrown naming `path` where it named the staging file.
   template <class WriteFile>
   void write(const std::string& path, WriteFile&& write_file) {
     const std::string staging = stagingName(path, staged_.size());
     staged_.emplace_back(staging, path);
-    write_file(staging);
+    try {
+      write_file(staging);
+    } catch (const InputError& e) {
+      rethrowNaming(e, staging, path);
+    }
   }
-  /// Renames every staged file over its target. Throws InputError naming the target if a rename fails
-  /// (the files renamed before it stay replaced; the rest are removed).
+  /// Renames every staged file over its target, in the order written. Throws InputError naming the target
+  /// if a rename fails: the files renamed before it stay replaced (the set is then mixed), the rest are
+  /// removed.
   void commit();
   /// The staging name of output number `index` of this process for `path`: "dir/name.ext" →
   /// "dir/name.part<pid>-<index>.ext".
   static std::string stagingName(const std::string& path, std::size_t index);
 
  private:
+  [[noreturn]] static void rethrowNaming(const InputError& e, const std::string& staging, const std::string& path);
   std::vector<std::pair<std::string, std::string>> staged_;  ///< (staging, target), not yet renamed
 };
 

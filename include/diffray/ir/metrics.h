@@ -16,7 +16,7 @@
 // 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e; C50, C80, D50 and Ts also when the band clears
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
-// band whose filter rings for longer than the response lasts after its onset.
+// band whose filter rings for longer than the file lasts after the onset.
 // Free functions, no state: thread-safe.
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -38,9 +38,9 @@ struct BandMetrics {
   double decay_range_db = kNaN;
   /// Where the noise truncation stopped the integral, s after the onset (NaN: not truncated).
   double truncation_s = kNaN;
-  /// metricsFromSignal: the response holds less after its onset than the band filter rings for
-  /// (BandFilter::ringSamples(band)), so its band signal is mostly the filter's own and is cut short; every
-  /// figure is then NaN.
+  /// metricsFromSignal: the file ends sooner after the onset than the band's filter rings
+  /// (BandFilter::ringSamples(band)), so the band signal is cut off while it still holds much of the
+  /// filter's own response; every figure is then NaN (metricsJson adds "shorter_than_filter": true).
   bool shorter_than_filter = false;
 };
 
