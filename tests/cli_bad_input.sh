@@ -225,6 +225,9 @@ expect_compare_error "listener on the screen" "listener onwall at (0, 0, 1): its
 expect_compare_error "--plot x.svg"         "ending in .png" "$rooms/barrier.json" --rays 1000 --plot "$tmp/cmp.svg"
 expect_clean "ir: --plot x.svg"             "out.*" "ending in .png" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 2000 --plot "$tmp/out.svg"
 expect_clean "validate: --plot x.svg"       "out.*" "ending in .png" validate slit-fraunhofer --rays 1000 --plot "$tmp/out.svg"
+# Two outputs in one file: refused before any work (one would silently replace the other).
+expect_clean "validate: --csv = --plot"     "out.*" "two of this command's outputs" validate slit-fraunhofer --rays 1000 --csv "$tmp/out.png" --plot "$tmp/./out.png"
+expect_compare_error "--csv = --plot"       "two of this command's outputs" "$rooms/barrier.json" --rays 1000 --csv "$tmp/cmp.png" --plot "$tmp/cmp.png"
 # A listener below the ground: a warning naming it, and its missing WBSDF levels are empty CSV cells.
 "$bin" compare "$tmp/l_under.json" --rays 2000 --fine-per-octave 2 --csv "$tmp/under.csv" >"$tmp/stdout" 2>"$tmp/stderr"
 if [ $? -eq 0 ] && grep -q "listener under at (6, 0, -1) is outside the room" "$tmp/stderr" &&

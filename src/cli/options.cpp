@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -81,12 +82,19 @@ void checkOutputFile(const std::string& path, const std::string& ext) {
 
 void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<std::string>& inputs) {
   std::error_code ec;
+  std::vector<std::filesystem::path> seen;  // outputs so far, as absolute paths without "." or ".."
   for (const std::string& path : paths) {
     if (path.empty()) continue;
     checkOutputFile(path, "");
     for (const std::string& input : inputs)
       if (!input.empty() && std::filesystem::equivalent(path, input, ec))
         throw core::InputError(path, "would overwrite the input " + input);
+    // Two outputs in one file (validate or compare with --csv out.png --plot out.png): one would silently
+    // replace the other. The files need not exist yet (weakly_canonical).
+    const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
+    if (!ec && std::find(seen.begin(), seen.end(), p) != seen.end())
+      throw core::InputError(path, "is given for two of this command's outputs, which would overwrite each other");
+    if (!ec) seen.push_back(p);
   }
 }
 

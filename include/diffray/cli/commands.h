@@ -44,8 +44,9 @@ void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
 /// Checks an output path before any work: its extension is `ext` (".wav"; not checked when empty) and its folder
 /// exists and is writable, and the path is not a folder. Throws core::InputError naming the path.
 void checkOutputFile(const std::string& path, const std::string& ext);
-/// checkOutputFile(path, "") for every non-empty path (extensions are the caller's), and none of them is one
-/// of the (non-empty) `inputs`: all of a command's outputs checked before any work.
+/// checkOutputFile(path, "") for every non-empty path (extensions are the caller's), none of them is one
+/// of the (non-empty) `inputs`, and no two are the same file: all of a command's outputs checked before any
+/// work.
 void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<std::string>& inputs = {});
 
 /// A command's set of output files, replaced together on commit() (core/atomic_file.h).
