@@ -9,6 +9,7 @@
 #include "diffray/core/parallel.h"
 #include "diffray/core/rng.h"
 #include "diffray/geometry/embree_scene.h"
+#include "diffray/transport/room_materials.h"
 
 namespace diffray::transport {
 
@@ -68,73 +69,8 @@ constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
 constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.6844301295853426,
                                     0.6031687406857283, 0.5315553977157913};
 
-// Per material, the event probabilities (band means, fixed) and the per-band weights that keep every band
-// unbiased for them: E[e_b'] = e_b·(p_r·(1 − α_b)/p_r + p_t·τ_b/p_t) = e_b·((1 − α_b) + τ_b), and likewise
-// for the split of a reflection into Lambert (s_b/p_s) and specular ((1 − s_b)/(1 − p_s)) parts. Fixed
-// probabilities cost no reduction or division per bounce (the tracer's hot path).
-struct MaterialTable {
-  std::vector<double> p_reflect, p_diffuse;
-  std::vector<core::BandArray> w_transmit, w_diffuse, w_specular;  ///< reflection weight included
-  std::vector<char> opening;  ///< τ = 1 in every band: a hole, not a surface (never an event)
-  std::vector<char> absorbing;  ///< nothing reflected or transmitted in any band
-};
-
-MaterialTable makeMaterials(const room::Room& room) {
-  MaterialTable t;
-  const int nb = room.bands.size();
-  for (int index = 0; index < static_cast<int>(room.materials.size()); ++index) {
-    const room::Material& m = room.materials[index];
-    double mean_r = 0, mean_t = 0, mean_rs = 0;
-    for (int b = 0; b < nb; ++b) {
-      mean_r += (1.0 - m.absorption[b]) / nb;
-      mean_t += m.transmission[b] / nb;
-      mean_rs += (1.0 - m.absorption[b]) * m.scattering[b] / nb;
-    }
-    const double p_r = mean_r + mean_t > 0 ? mean_r / (mean_r + mean_t) : 1.0;
-    const double p_s = mean_r > 0 ? mean_rs / mean_r : 0.0;  // reflected-energy-weighted mean scattering
-    core::BandArray wt = core::bandFill(0.0), wd = core::bandFill(0.0), ws = core::bandFill(0.0);
-    for (int b = 0; b < nb; ++b) {
-      const double r = (1.0 - m.absorption[b]) / p_r;
-      wt[b] = p_r < 1.0 ? m.transmission[b] / (1.0 - p_r) : 0.0;
-      wd[b] = p_s > 0.0 ? r * m.scattering[b] / p_s : 0.0;
-      ws[b] = p_s < 1.0 ? r * (1.0 - m.scattering[b]) / (1.0 - p_s) : 0.0;
-    }
-    t.p_reflect.push_back(p_r);
-    t.p_diffuse.push_back(p_s);
-    t.w_transmit.push_back(wt);
-    t.w_diffuse.push_back(wd);
-    t.w_specular.push_back(ws);
-    t.opening.push_back(room.isOpening(index) ? 1 : 0);
-    t.absorbing.push_back(mean_r + mean_t > 0 ? 0 : 1);
-  }
-  return t;
-}
-
-// A unit vector with the cosine-weighted (Lambert) density about the unit normal n.
-Vec3 sampleLambert(const Vec3& n, double u1, double u2) {
-  // Orthonormal basis (Duff et al. 2017, branchless).
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z()), b = n.x() * n.y() * a;
-  const Vec3 t1(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
-  const Vec3 t2(b, sign + n.y() * n.y() * a, -n.y());
-  const double r = std::sqrt(u1), phi = core::kTwoPi * u2;
-  return r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
-}
-
 // Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
 using Pair = double __attribute__((vector_size(16)));
-
-// Entry and exit distances of the segment [0, t_end) through a sphere, or false if it misses.
-bool chordSpan(const receiver::Sphere& s, const Vec3& o, const Vec3& d, double t_end, double& t_in, double& t_out) {
-  const Vec3 oc = o - s.centre;
-  const double b = oc.dot(d), c = oc.squaredNorm() - s.radius_m * s.radius_m;
-  const double disc = b * b - c;
-  if (disc <= 0.0) return false;
-  const double root = std::sqrt(disc);
-  t_in = std::max(-b - root, 0.0);
-  t_out = std::min(-b + root, t_end);
-  return t_out > t_in;
-}
 
 struct Tracer {
   const room::Room& room;
@@ -186,7 +122,7 @@ struct Tracer {
     if (!(closest[0] < 0.0 || closest[1] < 0.0)) return;
     for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
-      if (!chordSpan(spheres[l], pos, dir, t_end, t_in, t_out)) continue;
+      if (!spheres[l].chordSpan(pos.data(), dir.data(), 0.0, t_end, t_in, t_out)) continue;
       ++acc.crossings[l];
       if (skip || (l < 64 && (skip_listeners >> l & 1u))) continue;
       const double s_mid = path_m + 0.5 * (t_in + t_out);

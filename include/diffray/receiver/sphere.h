@@ -20,16 +20,23 @@ struct Sphere {
 
   double crossSection() const { return core::kPi * radius_m * radius_m; }
 
-  /// Length of the part of the segment origin + t·dir, t in [t0, t1), inside the sphere (dir a unit vector).
-  double chordLength(const double* origin, const double* dir, double t0, double t1) const {
+  /// The part of the segment origin + t·dir, t in [t0, t1), inside the sphere (dir a unit vector): its entry
+  /// and exit distances t_in < t_out, or false if the segment misses the sphere.
+  bool chordSpan(const double* origin, const double* dir, double t0, double t1, double& t_in, double& t_out) const {
     const double oc[3] = {origin[0] - centre.x(), origin[1] - centre.y(), origin[2] - centre.z()};
     const double b = oc[0] * dir[0] + oc[1] * dir[1] + oc[2] * dir[2];
     const double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - radius_m * radius_m;
     const double disc = b * b - c;
-    if (disc <= 0.0) return 0.0;
+    if (disc <= 0.0) return false;
     const double root = std::sqrt(disc);
-    const double t_in = std::max(-b - root, t0), t_out = std::min(-b + root, t1);
-    return t_out > t_in ? t_out - t_in : 0.0;
+    t_in = std::max(-b - root, t0);
+    t_out = std::min(-b + root, t1);
+    return t_out > t_in;
+  }
+  /// Length of the part of the segment origin + t·dir, t in [t0, t1), inside the sphere (dir a unit vector).
+  double chordLength(const double* origin, const double* dir, double t0, double t1) const {
+    double t_in = 0.0, t_out = 0.0;
+    return chordSpan(origin, dir, t0, t1, t_in, t_out) ? t_out - t_in : 0.0;
   }
   /// The weight of a chord of length `chord`: chord / (4R/3), the mean chord.
   double chordWeight(double chord) const { return chord * 0.75 / radius_m; }
