@@ -21,7 +21,7 @@ struct Sphere {
   double crossSection() const { return core::kPi * radius_m * radius_m; }
 
   /// The part of the segment origin + t·dir, t in [t0, t1), inside the sphere (dir a unit vector): its entry
-  /// and exit distances t_in < t_out, or false if the segment misses the sphere.
+  /// and exit distances t_in < t_out, or false if the segment misses the sphere (t_in, t_out then unspecified).
   bool chordSpan(const double* origin, const double* dir, double t0, double t1, double& t_in, double& t_out) const {
     const double oc[3] = {origin[0] - centre.x(), origin[1] - centre.y(), origin[2] - centre.z()};
     const double b = oc[0] * dir[0] + oc[1] * dir[1] + oc[2] * dir[2];

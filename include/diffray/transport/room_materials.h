@@ -19,7 +19,9 @@ namespace diffray::transport {
 
 struct MaterialTable {
   std::vector<double> p_reflect, p_diffuse;
-  std::vector<core::BandArray> w_transmit, w_diffuse, w_specular;  ///< reflection weight included
+  /// Per-band weights of the three events: w_diffuse = (1 − α_b)·s_b/(p_r·p_s), w_specular =
+  /// (1 − α_b)(1 − s_b)/(p_r(1 − p_s)), w_transmit = τ_b/(1 − p_r); 0 for an event that cannot happen.
+  std::vector<core::BandArray> w_transmit, w_diffuse, w_specular;
   std::vector<char> opening;  ///< τ = 1 in every band: a hole, not a surface (never an event)
   std::vector<char> absorbing;  ///< nothing reflected or transmitted in any band
 };
