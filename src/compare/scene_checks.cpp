@@ -58,19 +58,9 @@ bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
   return false;
 }
 
-// Whether the open segment p→q crosses triangle t (Möller–Trumbore, in double).
+// Whether the open segment p→q crosses triangle t (its ends excluded by 1e-9 of its length).
 bool segmentCrosses(const Vec3& p, const Vec3& q, const Tri& t) {
-  const Vec3 d = q - p, e1 = t.b - t.a, e2 = t.c - t.a, h = d.cross(e2);
-  const double det = e1.dot(h);
-  if (std::abs(det) < 1e-300) return false;
-  const Vec3 s = p - t.a;
-  const double u = s.dot(h) / det;
-  if (u < 0.0 || u > 1.0) return false;
-  const Vec3 qv = s.cross(e1);
-  const double v = d.dot(qv) / det;
-  if (v < 0.0 || u + v > 1.0) return false;
-  const double k = e2.dot(qv) / det;
-  return k > 1e-9 && k < 1.0 - 1e-9;
+  return room::crossesTriangle(p, q - p, t.a, t.b, t.c, 1e-9, 1.0 - 1e-9);
 }
 
 }  // namespace

@@ -14,8 +14,16 @@ namespace {
 
 using core::Vec3;
 
-// Whether the ray o + t·d (t > 0) crosses triangle abc (Möller–Trumbore).
-bool crosses(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+std::string format(const Vec3& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+}  // namespace
+
+bool crossesTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double t_lo,
+                     double t_hi) {
   const Vec3 e1 = b - a, e2 = c - a, q = d.cross(e2);
   const double det = e1.dot(q);
   if (std::abs(det) < 1e-300) return false;
@@ -26,16 +34,9 @@ bool crosses(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const V
   const Vec3 r = s.cross(e1);
   const double v = d.dot(r) * inv;
   if (v < 0.0 || u + v > 1.0) return false;
-  return e2.dot(r) * inv > 0.0;
+  const double t = e2.dot(r) * inv;
+  return t > t_lo && t < t_hi;
 }
-
-std::string format(const Vec3& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return s.str();
-}
-
-}  // namespace
 
 // Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, §5.1.5).
 Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -109,8 +110,8 @@ bool insideRoom(const Room& room, const Vec3& p) {
   for (const Vec3& d : dirs) {
     int count = 0;
     for (std::size_t t = 0; t < m.triangles.size(); ++t)
-      if (bounding[t] && crosses(p, d, m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]],
-                                        m.vertices[m.triangles[t][2]]))
+      if (bounding[t] && crossesTriangle(p, d, m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]],
+                                         m.vertices[m.triangles[t][2]]))
         ++count;
     votes += count % 2;
   }

@@ -6,6 +6,7 @@
 // window to the outside) is kept, so neither counts as a hole. Brute force over the triangles: meant
 // for scene loading, not for tracing.
 // Free functions on a const Room; thread-safe.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,11 @@ namespace diffray::room {
 int openEdgeCount(const Room& room);
 /// Whether `p` is inside the enclosure: the parity of crossings along three fixed directions, majority.
 bool insideRoom(const Room& room, const core::Vec3& p);
+/// Whether o + t·d meets triangle abc (edges included) at some t with t_lo < t < t_hi (Möller–Trumbore,
+/// in double): the default is the open ray.
+bool crossesTriangle(const core::Vec3& o, const core::Vec3& d, const core::Vec3& a, const core::Vec3& b,
+                     const core::Vec3& c, double t_lo = 0.0,
+                     double t_hi = std::numeric_limits<double>::infinity());
 /// The point of triangle abc closest to p (Ericson, Real-Time Collision Detection, §5.1.5).
 core::Vec3 closestOnTriangle(const core::Vec3& p, const core::Vec3& a, const core::Vec3& b, const core::Vec3& c);
 /// The distance (m) from `p` to the nearest triangle, openings included; +inf for an empty mesh.
