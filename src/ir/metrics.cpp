@@ -6,6 +6,7 @@
 
 #include "diffray/core/error.h"
 #include "diffray/ir/band_filter.h"
+#include "diffray/ir/filter_limit.h"
 
 namespace diffray::ir {
 
@@ -299,6 +300,7 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
   // the file's length only: a response that is itself shorter than the filter's ringing but sits in a long
   // enough file is measured, and then reads the filter's decay.
   const long after_onset = onset < 0 ? 0 : static_cast<long>(padded.size()) - onset;
+  const FilterLimit limit(filter);
   std::vector<BandMetrics> out;
   for (int b = 0; b < static_cast<int>(energy.size()); ++b) {
     if (onset >= 0 && after_onset < filter.ringSamples(b)) {
@@ -309,7 +311,11 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
     }
     std::vector<double>& band = energy[static_cast<size_t>(b)];
     for (double& v : band) v *= v;
-    out.push_back(metricsFromEnergy(band, 1.0 / sample_rate_hz, onset));
+    BandMetrics m = metricsFromEnergy(band, 1.0 / sample_rate_hz, onset);
+    m.edt_filter_limited = limit.limited(b, DecayFigure::Edt, m.edt);
+    m.t20_filter_limited = limit.limited(b, DecayFigure::T20, m.t20);
+    m.t30_filter_limited = limit.limited(b, DecayFigure::T30, m.t30);
+    out.push_back(m);
   }
   return out;
 }
@@ -339,6 +345,11 @@ nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<B
                          {"c50", value(m.c50)}, {"c80", value(m.c80)}, {"d50", value(m.d50)},
                          {"ts", value(m.ts)},   {"decay_range_db", value(m.decay_range_db)}};
     if (m.shorter_than_filter) j[bands.label(b)]["shorter_than_filter"] = true;
+    nlohmann::ordered_json limited = nlohmann::ordered_json::array();
+    if (m.edt_filter_limited) limited.push_back("edt");
+    if (m.t20_filter_limited) limited.push_back("t20");
+    if (m.t30_filter_limited) limited.push_back("t30");
+    if (!limited.empty()) j[bands.label(b)]["filter_limited"] = limited;
   }
   return j;
 }
@@ -350,7 +361,7 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   std::snprintf(line, sizeof line, "%7s %7s %7s %7s %7s %7s %7s %7s %9s\n", "band Hz", "T20 s", "T30 s", "EDT s",
                 "C50 dB", "C80 dB", "D50", "Ts ms", "range dB");
   out += line;
-  bool missing = false, short_band = false;
+  bool missing = false, short_band = false, limited_any = false;
   const auto cell = [&missing](double v, const char* format) {
     char text[32];
     if (!std::isfinite(v)) {
@@ -363,14 +374,23 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   for (int b = 0; b < bands.size(); ++b) {
     const BandMetrics& m = metrics[b];
     short_band |= m.shorter_than_filter;
-    out += cell(bands.nominalHz(b), "%7g") + " " + cell(m.t20, "%7.3f") + " " + cell(m.t30, "%7.3f") + " " +
-           cell(m.edt, "%7.3f") + " " + cell(m.c50, "%7.2f") + " " + cell(m.c80, "%7.2f") + " " +
+    // A decay figure the band filter alone would bias by more than 5 % carries a '*'.
+    const auto decay = [&](double v, bool limited) {
+      if (!limited || !std::isfinite(v)) return cell(v, "%7.3f");
+      limited_any = true;
+      return cell(v, "%6.3f*");
+    };
+    out += cell(bands.nominalHz(b), "%7g") + " " + decay(m.t20, m.t20_filter_limited) + " " +
+           decay(m.t30, m.t30_filter_limited) + " " + decay(m.edt, m.edt_filter_limited) + " " + cell(m.c50, "%7.2f") + " " + cell(m.c80, "%7.2f") + " " +
            cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " +
            (m.shorter_than_filter ? std::string("  short") : cell(m.decay_range_db, "%7.1f")) + "\n";
   }
   if (missing)
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
            "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
+  if (limited_any)
+    out += "*: within the reach of the band's analysis filter: the true decay is more than 5 % shorter (the JND of "
+           "EDT, ISO 3382-1 Annex A), or as short as the filter's own; the figure measures the filter too.\n";
   if (short_band)
     out += "short: the file ends sooner after the onset than the band's analysis filter rings (0.15-0.4 s for "
            "octave bands, up to 1.2 s for third octaves), so the band is not measured.\n";

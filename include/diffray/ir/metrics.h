@@ -16,7 +16,8 @@
 // 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e; C50, C80, D50 and Ts also when the band clears
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
-// band whose filter rings for longer than the file lasts after the onset.
+// band whose filter rings for longer than the file lasts after the onset, and flags each EDT, T20 and T30
+// that its band filter alone would bias by more than 5 % (FilterLimit).
 // Free functions, no state: thread-safe.
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -42,6 +43,10 @@ struct BandMetrics {
   /// (BandFilter::ringSamples(band)), so the band signal is cut off while it still holds much of the
   /// filter's own response; every figure is then NaN (metricsJson adds "shorter_than_filter": true).
   bool shorter_than_filter = false;
+  /// metricsFromSignal: the figure is within the band filter's reach (FilterLimit::limited, filter_limit.h):
+  /// the true decay that reads this way is more than 5 % shorter, or as short as the filter's own. The
+  /// figure is still given; metricsJson lists it under "filter_limited", metricsTable marks it with '*'.
+  bool edt_filter_limited = false, t20_filter_limited = false, t30_filter_limited = false;
 };
 
 /// Metrics of one band's energy histogram (J/m² per bin of width bin_s seconds, first bin at time 0).
