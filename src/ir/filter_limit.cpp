@@ -16,8 +16,9 @@ FilterLimit::FilterLimit(const BandFilter& filter) : fs_(filter.sampleRateHz()) 
   impulse[static_cast<size_t>(ring)] = 1.0;
   std::vector<std::vector<double>> bands = filter.split(impulse);
   for (int b = 0; b < static_cast<int>(bands.size()); ++b) {
-    // Keep the band's own ringing only (ringSamples(b) either side): beyond it the response is negligible.
-    const long half = std::min(filter.ringSamples(b), ring);
+    // Keep the band's own ringing only (ringSamples(b) ≤ ring either side): beyond it the response is
+    // negligible.
+    const long half = filter.ringSamples(b);
     std::vector<double> h2(static_cast<size_t>(2 * half + 1));
     for (long n = -half; n <= half; ++n) {
       const double v = bands[static_cast<size_t>(b)][static_cast<size_t>(ring + n)];
@@ -46,7 +47,8 @@ double FilterLimit::relativeBias(int band, DecayFigure figure, double t_s) const
   std::vector<double> g(static_cast<size_t>(g_bins), 0.0);
   for (long n = std::max(0L, first); n < static_cast<long>(h2.size()); ++n)
     g[static_cast<size_t>((n - first) / k)] += h2[static_cast<size_t>(n)];
-  // The envelope: energy 10^(−6t/T) per second, integrated over each bin, for 2T (120 dB).
+  // The envelope: energy 10^(−6t/T) per second over 2T (120 dB), per bin its value at the bin's start
+  // (proportional to its integral over the bin, and the metrics do not depend on scale).
   const long e_bins = static_cast<long>(std::ceil(2.0 * t_s / bin_s));
   const double decay = std::pow(10.0, -6.0 * bin_s / t_s);  // per bin
   std::vector<double> conv(static_cast<size_t>(e_bins + g_bins), 0.0);

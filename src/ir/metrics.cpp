@@ -298,7 +298,7 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
   // band signal is then cut off while it still holds much of the filter's own response (a 21-sample click
   // read a negative decay range at 63 Hz, a negative Ts at 125 Hz and an EDT of 0.25 s). This is a test of
   // the file's length only: a response that is itself shorter than the filter's ringing but sits in a long
-  // enough file is measured, and then reads the filter's decay.
+  // enough file is measured, and then reads the filter's decay (and is flagged: FilterLimit).
   const long after_onset = onset < 0 ? 0 : static_cast<long>(padded.size()) - onset;
   const FilterLimit limit(filter);
   std::vector<BandMetrics> out;

@@ -7,13 +7,13 @@
 // energy envelope of an exponential decay that falls 60 dB in T (design.md §2's convention that Σ p² over
 // a span is its energy), convolved with the band filter's squared impulse response h_b² (the expected
 // band energy of diffuse, noise-like decay with that envelope), measured by metricsFromEnergy from the
-// decay's start. relativeBias() is that measured figure over T, minus 1: positive (the filter lengthens
-// decays) and falling as T grows. limited(T_m) asks which true decay would be read as the measured T_m
-// and flags T_m when that decay is more than kTolerance shorter. The model's reading g(T) = T·(1 + bias)
-// grows with T, so this holds when g(T_m/(1 + kTolerance)) > T_m: one model evaluation. g levels off
-// at the filter's own figure (ownFigure: what a Dirac reads) as T → 0, where every shorter decay reads
-// alike, so T_m within kTolerance of that figure is flagged as well (a Dirac's T30 in the 2–8 kHz
-// octaves passes the first test and not the second). Units: seconds; band indices as the BandFilter's. Immutable after construction;
+// decay's start. relativeBias() is that measured figure over T, minus 1: filters lengthen decays, so it
+// is positive (to within ~1 % of numerics) and falls as T grows. limited(T_m) asks which true decay would
+// be read as the measured T_m and flags T_m when that decay is more than kTolerance shorter. Assuming the
+// model's reading g(T) = T·(1 + bias) grows with T, that holds when g(T_m/(1 + kTolerance)) > T_m: one
+// model evaluation. The assumption fails where g is flat: as T → 0, g levels off near the filter's own
+// figure (ownFigure, what a Dirac reads), and every shorter decay reads about alike; a Dirac's T30 in the
+// 2–8 kHz octaves passes the first test. So a figure at most kTolerance above ownFigure is flagged too. Units: seconds; band indices as the BandFilter's. Immutable after construction;
 // thread-safe.
 #include <vector>
 

@@ -17,7 +17,8 @@
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
 // band whose filter rings for longer than the file lasts after the onset, and flags each EDT, T20 and T30
-// that its band filter alone would bias by more than 5 % (FilterLimit).
+// within its band filter's reach (FilterLimit::limited: the true decay that reads this way is more than 5 %
+// shorter, or as short as the filter's own).
 // Free functions, no state: thread-safe.
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -71,12 +72,13 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
                                            const core::Bands& bands);
 
 /// {"125": {"t20": …, "t30": …, "edt": …, "c50": …, "c80": …, "d50": …, "ts": …, "decay_range_db": …}, …}
+/// plus "filter_limited": ["edt", …] and "shorter_than_filter": true where they apply;
 /// keyed by nominal centre in band order (an ordered_json: a plain json object would sort "1000" before
 /// "125"); NaN as null. Embed it in ordered_json objects too, or the keys are sorted again.
 nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
 
 /// A text table, one row per band (T20 T30 EDT in s, C50 C80 in dB, D50, Ts in ms, decay range in dB),
-/// "-" where a figure is NaN, followed by a note on why when there is one.
+/// "-" where a figure is NaN and '*' after a filter-limited one, followed by a note on each mark used.
 std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
 
 }  // namespace diffray::ir
