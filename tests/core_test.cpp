@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
+#include <vector>
 
 #include "diffray/core/math.h"
 #include "diffray/core/rng.h"
@@ -18,6 +20,17 @@ TEST(GaussLegendre, IntegratesPolynomialsExactly) {
       EXPECT_NEAR(sum, exact, 1e-12) << "n=" << n << " k=" << k;
     }
   }
+}
+
+// The rules are cached once per n and then read without a lock: threads asking for the same new n at once
+// all get the one rule.
+TEST(GaussLegendre, ConcurrentFirstRequestsShareOneRule) {
+  std::vector<const dc::GaussLegendre*> seen(8, nullptr);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t) threads.emplace_back([&seen, t] { seen[t] = &dc::gaussLegendre(97); });
+  for (auto& t : threads) t.join();
+  for (const auto* rule : seen) EXPECT_EQ(rule, &dc::gaussLegendre(97));
+  EXPECT_EQ(dc::gaussLegendre(97).nodes.size(), 97u);
 }
 
 TEST(GaussLegendre, CompositeRuleIntegratesSine) {

@@ -126,16 +126,15 @@ double Openings::lagBound(double x) const {
 
 double Openings::cellMass(double x1, double x2, double u1, double u2) const {
   DIFFRAY_CHECK(x2 > x1 && u2 > u1);
-  // Split [x1, x2] at breakpoints so that each piece is smooth (see the comment above).
-  std::vector<double> cuts{x1};
-  for (auto it = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1);
-       it != breakpoints_.end() && *it < x2; ++it)
-    cuts.push_back(*it);
-  cuts.push_back(x2);
+  // Split [x1, x2] at breakpoints so that each piece is smooth (see the comment above); no allocation: this
+  // runs once per table cell.
   double total = 0.0;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-    const double width = cuts[i + 1] - cuts[i];
-    const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+  auto next = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1);
+  for (double lo = x1; lo < x2;) {
+    double hi = x2;
+    if (next != breakpoints_.end() && *next < x2) hi = *next++;
+    const double width = hi - lo;
+    const double mid = 0.5 * (lo + hi);
     // Oscillation frequency in u is at most the lag bound (plus the sinc from the x-average).
     const double cycles = (u2 - u1) * (lagBound(mid) + 2.0 * width);
     if (!(cycles < 1e4))
@@ -146,6 +145,7 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
         std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
     total += width * core::integrate([&](double u) { return pieceWdf(piece, mid, u) * sinc(2.0 * u * width); },
                                      u1, u2, panels, 6);
+    lo = hi;
   }
   return total / (x2 - x1);
 }
