@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -374,4 +375,26 @@ TEST(WbsdfTableSampling, EvalIsTheTabulatedDistribution) {
   for (int r = 0; r < gt->layout().nx; ++r)
     order1 += gt->eval(gt->layout().x0_m + (r + 0.5) * gt->layout().dx_m, 1.0 / period) / gt->layout().nx;
   EXPECT_NEAR(order1, std::pow(std::cyl_bessel_j(1, 0.5 * m), 2), 1e-9);
+}
+
+// TableOptions::on_row (a progress bar's feed): called once per row, from worker threads, with the row
+// count, and without changing a single mass.
+TEST(WbsdfTableBuild, ReportsEachRowAndBuildsTheSameTable) {
+  const auto slits = diffray::wbsdf::Openings::slits(3, 100e-6, 250e-6);
+  diffray::wbsdf::TableOptions o;
+  o.wavelength_m = 500e-9;
+  o.u_half_range_per_m = 0.02 / o.wavelength_m;
+  const auto plain = diffray::wbsdf::WbsdfTable::build(*slits, o);
+  std::atomic<std::uint64_t> calls{0}, wrong_total{0};
+  const auto nx = static_cast<std::uint64_t>(plain->layout().nx);
+  o.on_row = [&](std::uint64_t rows) {
+    ++calls;
+    if (rows != nx) ++wrong_total;
+  };
+  const auto watched = diffray::wbsdf::WbsdfTable::build(*slits, o);
+  EXPECT_EQ(calls.load(), nx);
+  EXPECT_EQ(wrong_total.load(), 0u);
+  ASSERT_EQ(watched->layout().nu, plain->layout().nu);
+  for (int j = 0; j < plain->layout().nx; ++j)
+    for (int k = 0; k < plain->layout().nu; ++k) ASSERT_EQ(watched->mass(j, k), plain->mass(j, k)) << j << " " << k;
 }

@@ -67,7 +67,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
 
     core::ThreadLimit limit(common.threads);
     const auto start = std::chrono::steady_clock::now();
-    const auto prepared = render::prepareScene(scene);
+    const auto prepared = render::prepareScene(scene, false, core::progressOfUnknownSize);
     render::RenderOptions ropt;
     ropt.photons = photons;
     ropt.seed = seed;

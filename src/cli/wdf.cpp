@@ -11,6 +11,7 @@
 #include "diffray/cli/commands.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
+#include "diffray/core/progress.h"
 #include "diffray/core/parallel.h"
 #include "diffray/wbsdf/microstructure.h"
 #include "diffray/wbsdf/profile_csv.h"
@@ -41,6 +42,7 @@ std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
   t.u_half_range_per_m = o.u_range_per_m;
   t.max_cells = 4'000'000;  // a table to look at, not to trace with: coarsen u rather than refuse
   t.coarsen_to_fit = true;
+  t.on_row = core::progressOfUnknownSize("wdf " + o.kind);
   if (o.kind == "rough") {
     core::requirePositive("--sigma-h", o.sigma_h_m);
     core::requirePositive("--corr-length", o.corr_length_m);

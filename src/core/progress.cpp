@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <memory>
 
 namespace diffray::core {
 
@@ -42,6 +43,20 @@ void Progress::finish() {
   finished_ = true;
   draw(done_.load());
   std::fprintf(stderr, "\n");
+}
+
+std::function<void(std::uint64_t)> progressOfUnknownSize(std::string label) {
+  struct State {
+    std::string label;
+    std::once_flag started;
+    std::unique_ptr<Progress> bar;
+  };
+  auto state = std::make_shared<State>();
+  state->label = std::move(label);
+  return [state](std::uint64_t total) {
+    std::call_once(state->started, [&] { state->bar = std::make_unique<Progress>(state->label, total); });
+    state->bar->add(1);
+  };
 }
 
 }  // namespace diffray::core

@@ -132,7 +132,8 @@ wbsdf::TableOptions axisTableOptions(const wbsdf::Microstructure& m, double delt
   return o;
 }
 
-std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_force) {
+std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_force,
+                                            const TableProgressFactory& table_progress) {
   auto out = std::make_unique<PreparedScene>();
   out->spec = &s;
   out->camera = Camera(s.camera);
@@ -176,8 +177,15 @@ std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_forc
         occ.focal_length_m = spec.focal_length_m;
         break;
     }
-    occ.table_x = wbsdf::WbsdfTable::build(*mx, axisTableOptions(*mx, b.dx, lambda_min, lambda_max, fp_at_throw, throw_m));
-    if (my) occ.table_y = wbsdf::WbsdfTable::build(*my, axisTableOptions(*my, b.dy, lambda_min, lambda_max, fp_at_throw, throw_m));
+    const auto build = [&](const wbsdf::Microstructure& m, double delta_cos, const char* axis) {
+      wbsdf::TableOptions o = axisTableOptions(m, delta_cos, lambda_min, lambda_max, fp_at_throw, throw_m);
+      if (table_progress)
+        o.on_row = table_progress("WBSDF table " + (spec.name.empty() ? "#" + std::to_string(k + 1) : spec.name) +
+                                  " " + axis);
+      return wbsdf::WbsdfTable::build(m, o);  // o, and with it the progress bar, ends here
+    };
+    occ.table_x = build(*mx, b.dx, "x");
+    if (my) occ.table_y = build(*my, b.dy, "y");
     occ.frame = spec.frame;
     occ.half_x_m = spec.half_x_m;
     occ.half_y_m = spec.half_y_m;

@@ -103,6 +103,7 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
     const int probes = 16;
     for (int p = 0; p < probes; ++p) t2 += std::norm(m.transmittance(x1 + (p + 0.5) * L.dx_m / probes));
     row_total[j] = t2 / probes - sum;
+    if (o.on_row) o.on_row(static_cast<std::uint64_t>(L.nx));
   });
   double truncated = 0.0;
   for (double r : row_total) truncated += r;

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 
@@ -26,5 +27,11 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool finished_ = false;
 };
+
+/// For work whose size is known only once it starts (a WBSDF table learns its row count from its
+/// layout): returns a callback that draws a bar labelled `label`, created at the first call with that
+/// call's `total`, advanced by one per call, and finished when the last copy of the callback is destroyed.
+/// Thread-safe.
+std::function<void(std::uint64_t total)> progressOfUnknownSize(std::string label);
 
 }  // namespace diffray::core

@@ -19,6 +19,7 @@
 //    every rectangle. Gratings: their lines (wbsdf/table.h).
 //  - dx: 1/8 of the smaller of the footprint and the feature size (slit width, period).
 // Tables are limited to 8 million cells (coarser in u beyond that). Immutable once built; thread-safe.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -41,8 +42,13 @@ struct PreparedScene {
 wbsdf::TableOptions axisTableOptions(const wbsdf::Microstructure& m, double delta_cos, double lambda_min_m,
                                      double lambda_max_m, double footprint_m, double throw_m);
 
+/// Makes a table build's progress callback (TableOptions::on_row) from a label, e.g.
+/// core::progressOfUnknownSize for a bar on the terminal.
+using TableProgressFactory = std::function<std::function<void(std::uint64_t)>(const std::string& label)>;
+
 /// Builds tables and the Embree scene (brute_force: the test back end). Throws InputError for a table that
-/// cannot be built.
-std::unique_ptr<PreparedScene> prepareScene(const LightScene& spec, bool brute_force = false);
+/// cannot be built. table_progress (optional) gets one callback per table, labelled by occluder and axis.
+std::unique_ptr<PreparedScene> prepareScene(const LightScene& spec, bool brute_force = false,
+                                            const TableProgressFactory& table_progress = {});
 
 }  // namespace diffray::render

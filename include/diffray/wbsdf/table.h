@@ -11,6 +11,7 @@
 // multiplied by weight = sign(mass)·Σ|mass|, so E[weight] = Σ mass = x-average of |t|²: energy is
 // conserved on average and the sign travels in the ray. Immutable after construction; thread-safe.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct TableOptions {
   std::size_t max_cells = 40'000'000;
   /// When the table would exceed max_cells: widen du to fit (true) or throw InputError (false).
   bool coarsen_to_fit = false;
+  /// Progress: called after each finished row with the table's row count, from worker threads (so it
+  /// must be thread-safe; core::progressOfUnknownSize makes one that draws a bar). Empty: none.
+  std::function<void(std::uint64_t rows)> on_row;
 };
 
 class WbsdfTable {
