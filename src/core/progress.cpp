@@ -46,7 +46,7 @@ void Progress::finish() {
 }
 
 std::function<void(std::uint64_t)> progressOfUnknownSize(std::string label) {
-  struct State {
+  struct State {  // shared by every copy of the callback; the bar ends with the last copy
     std::string label;
     std::once_flag started;
     std::unique_ptr<Progress> bar;

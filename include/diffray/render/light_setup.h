@@ -19,8 +19,10 @@
 //    every rectangle. Gratings: their lines (wbsdf/table.h).
 //  - dx: 1/8 of the smaller of the footprint and the feature size (slit width, period).
 // Tables are limited to 8 million cells (coarser in u beyond that). Immutable once built; thread-safe.
+#include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "diffray/render/camera.h"
