@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "diffray/core/error.h"
-#include "diffray/ir/metrics.h"
 
 namespace diffray::ir {
 
@@ -24,14 +23,13 @@ FilterLimit::FilterLimit(const BandFilter& filter) : fs_(filter.sampleRateHz()) 
       const double v = bands[static_cast<size_t>(b)][static_cast<size_t>(ring + n)];
       h2[static_cast<size_t>(n + half)] = v * v;
     }
-    const BandMetrics own = metricsFromEnergy(h2, 1.0 / fs_, half);
-    own_.insert(own_.end(), {own.edt, own.t20, own.t30});
+    own_.push_back(metricsFromEnergy(h2, 1.0 / fs_, half));
     centre_.push_back(half);
     response_.push_back(std::move(h2));
   }
 }
 
-double FilterLimit::relativeBias(int band, DecayFigure figure, double t_s) const {
+BandMetrics FilterLimit::modelReading(int band, double t_s) const {
   core::requirePositive("filter limit: reverberation time", t_s);
   DIFFRAY_CHECK(band >= 0 && band < static_cast<int>(response_.size()));
   // Bins of T/400 (at least one sample): the energy envelope is smooth on that scale, and the
@@ -56,23 +54,112 @@ double FilterLimit::relativeBias(int band, DecayFigure figure, double t_s) const
   for (long i = 0; i < e_bins; ++i, level *= decay)
     for (long j = 0; j < g_bins; ++j) conv[static_cast<size_t>(i + j)] += level * g[static_cast<size_t>(j)];
   // Time zero where the envelope starts: bin lead_bins of the convolution.
-  const BandMetrics m = metricsFromEnergy(conv, bin_s, lead_bins);
-  const double value = figure == DecayFigure::Edt ? m.edt : figure == DecayFigure::T20 ? m.t20 : m.t30;
-  return value / t_s - 1.0;
+  return metricsFromEnergy(conv, bin_s, lead_bins);
 }
 
-bool FilterLimit::limited(int band, DecayFigure figure, double measured_s) const {
-  if (!(std::isfinite(measured_s) && measured_s > 0.0)) return false;
-  // The decay kTolerance shorter than measured would read at least as long: the true one is shorter still.
+double FilterLimit::trueValue(Figure figure, double t_s) {
+  switch (figure) {
+    case Figure::Edt:
+    case Figure::T20:
+    case Figure::T30:
+      return t_s;
+    case Figure::C50:
+      return 10.0 * std::log10(std::pow(10.0, 0.3 / t_s) - 1.0);
+    case Figure::C80:
+      return 10.0 * std::log10(std::pow(10.0, 0.48 / t_s) - 1.0);
+    case Figure::D50:
+      return 1.0 - std::pow(10.0, -0.3 / t_s);
+    case Figure::Ts:
+      return t_s / (6.0 * std::log(10.0));
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double FilterLimit::relativeBias(int band, Figure figure, double t_s) const {
+  DIFFRAY_CHECK(figure == Figure::Edt || figure == Figure::T20 || figure == Figure::T30);
+  return modelReading(band, t_s).value(figure) / t_s - 1.0;
+}
+
+namespace {
+
+// The decay time whose exponential has the true figure v (trueValue inverted); 0 when v is beyond what
+// any decay reaches on the short side, infinity on the long side.
+double decayTimeOf(Figure figure, double v) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  switch (figure) {
+    case Figure::Edt:
+    case Figure::T20:
+    case Figure::T30:
+      return std::max(v, 0.0);
+    case Figure::C50:
+    case Figure::C80: {
+      const double te = figure == Figure::C50 ? 0.05 : 0.08;
+      return 6.0 * te / std::log10(std::pow(10.0, v / 10.0) + 1.0);  // C → +∞: T → 0; C → −∞: T → ∞
+    }
+    case Figure::D50:
+      if (v >= 1.0) return 0.0;
+      if (v <= 0.0) return kInf;
+      return -0.3 / std::log10(1.0 - v);
+    case Figure::Ts:
+      return std::max(v, 0.0) * 6.0 * std::log(10.0);
+  }
+  return kInf;
+}
+
+}  // namespace
+
+bool FilterLimit::limited(int band, Figure figure, double measured) const {
+  if (!std::isfinite(measured)) return false;
+  // The band of true values within one JND of the measured one.
+  double lo = measured, hi = measured;
+  switch (figure) {
+    case Figure::Edt:
+    case Figure::T20:
+    case Figure::T30:
+      lo = measured / (1.0 + kDecayTolerance), hi = measured * (1.0 + kDecayTolerance);
+      break;
+    case Figure::C50:
+    case Figure::C80:
+      lo = measured - 1.0, hi = measured + 1.0;
+      break;
+    case Figure::D50:
+      lo = measured - 0.05, hi = measured + 0.05;
+      break;
+    case Figure::Ts:
+      lo = measured - 0.010, hi = measured + 0.010;
+      break;
+  }
+  // The decays whose true figures are lo and hi. Figures that fall with T (C, D) swap the ends. A decay of
+  // zero length has the instant's true figure (0 s, +∞ dB, D50 = 1, Ts = 0): when that lies within the
+  // JND, so do all shorter decays, and the short end needs no test (t_short = 0).
+  const bool rising = !(figure == Figure::C50 || figure == Figure::C80 || figure == Figure::D50);
+  // A decay time within 5 % of a Dirac's reading is where the readings level off: the model and a
+  // measurement of the same thing differ there by a few per cent, so no comparison can place it.
   const double own = ownFigure(band, figure);
-  if (std::isfinite(own) && measured_s <= (1.0 + kTolerance) * own) return true;
-  const double bias = relativeBias(band, figure, measured_s / (1.0 + kTolerance));
-  return !std::isfinite(bias) || bias > kTolerance;
+  const bool decay_time = figure == Figure::Edt || figure == Figure::T20 || figure == Figure::T30;
+  if (decay_time && std::isfinite(own) && measured <= (1.0 + kDecayTolerance) * own) return true;
+  const double t_short = decayTimeOf(figure, rising ? lo : hi), t_long = decayTimeOf(figure, rising ? hi : lo);
+  // The true decay reads as `measured`. It is shorter than t_short if some decay shorter than t_short reads
+  // at least that far: the model at t_short, or a Dirac (as T → 0 the readings level off near ownFigure and
+  // need not keep falling: a Dirac's T30 in the 2–8 kHz octaves reads what a 0.04 s decay does).
+  if (t_short > 0.0) {
+    double reading = modelReading(band, t_short).value(figure);
+    if (!std::isfinite(reading)) return true;  // the model cannot tell
+    if (std::isfinite(own)) reading = rising ? std::max(reading, own) : std::min(reading, own);
+    if (rising ? reading >= measured : reading <= measured) return true;
+  }
+  // It is longer than t_long if t_long reads short of it (an infinitely long decay reads as itself).
+  if (std::isfinite(t_long)) {
+    const double reading = modelReading(band, t_long).value(figure);
+    if (!std::isfinite(reading)) return true;
+    if (rising ? reading < measured : reading > measured) return true;
+  }
+  return false;
 }
 
-double FilterLimit::ownFigure(int band, DecayFigure figure) const {
-  DIFFRAY_CHECK(band >= 0 && 3 * band + 2 < static_cast<int>(own_.size()));
-  return own_[static_cast<size_t>(3 * band + static_cast<int>(figure))];
+double FilterLimit::ownFigure(int band, Figure figure) const {
+  DIFFRAY_CHECK(band >= 0 && band < static_cast<int>(own_.size()));
+  return own_[static_cast<size_t>(band)].value(figure);
 }
 
 }  // namespace diffray::ir

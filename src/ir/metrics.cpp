@@ -312,9 +312,7 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
     std::vector<double>& band = energy[static_cast<size_t>(b)];
     for (double& v : band) v *= v;
     BandMetrics m = metricsFromEnergy(band, 1.0 / sample_rate_hz, onset);
-    m.edt_filter_limited = limit.limited(b, DecayFigure::Edt, m.edt);
-    m.t20_filter_limited = limit.limited(b, DecayFigure::T20, m.t20);
-    m.t30_filter_limited = limit.limited(b, DecayFigure::T30, m.t30);
+    for (Figure f : kAllFigures) m.filter_limited[static_cast<size_t>(f)] = limit.limited(b, f, m.value(f));
     out.push_back(m);
   }
   return out;
@@ -333,6 +331,24 @@ std::vector<BandMetrics> metricsFromHistograms(const std::vector<std::vector<dou
   return out;
 }
 
+const char* figureName(Figure figure) {
+  static constexpr const char* kNames[] = {"edt", "t20", "t30", "c50", "c80", "d50", "ts"};
+  return kNames[static_cast<int>(figure)];
+}
+
+double BandMetrics::value(Figure f) const {
+  switch (f) {
+    case Figure::Edt: return edt;
+    case Figure::T20: return t20;
+    case Figure::T30: return t30;
+    case Figure::C50: return c50;
+    case Figure::C80: return c80;
+    case Figure::D50: return d50;
+    case Figure::Ts: return ts;
+  }
+  return kNaN;
+}
+
 nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics) {
   DIFFRAY_CHECK(static_cast<int>(metrics.size()) == bands.size());
   const auto value = [](double v) {
@@ -346,9 +362,8 @@ nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<B
                          {"ts", value(m.ts)},   {"decay_range_db", value(m.decay_range_db)}};
     if (m.shorter_than_filter) j[bands.label(b)]["shorter_than_filter"] = true;
     nlohmann::ordered_json limited = nlohmann::ordered_json::array();
-    if (m.edt_filter_limited) limited.push_back("edt");
-    if (m.t20_filter_limited) limited.push_back("t20");
-    if (m.t30_filter_limited) limited.push_back("t30");
+    for (Figure f : kAllFigures)
+      if (m.limited(f)) limited.push_back(figureName(f));
     if (!limited.empty()) j[bands.label(b)]["filter_limited"] = limited;
   }
   return j;
@@ -374,23 +389,26 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   for (int b = 0; b < bands.size(); ++b) {
     const BandMetrics& m = metrics[b];
     short_band |= m.shorter_than_filter;
-    // A decay figure the band filter alone would bias by more than 5 % carries a '*'.
-    const auto decay = [&](double v, bool limited) {
-      if (!limited || !std::isfinite(v)) return cell(v, "%7.3f");
+    // A figure within its band filter's reach (BandMetrics::filter_limited) carries a '*'.
+    const auto figure = [&](Figure f, double scale, const char* format, const char* marked) {
+      const double v = scale * m.value(f);
+      if (!m.limited(f) || !std::isfinite(v)) return cell(v, format);
       limited_any = true;
-      return cell(v, "%6.3f*");
+      return cell(v, marked);
     };
-    out += cell(bands.nominalHz(b), "%7g") + " " + decay(m.t20, m.t20_filter_limited) + " " +
-           decay(m.t30, m.t30_filter_limited) + " " + decay(m.edt, m.edt_filter_limited) + " " + cell(m.c50, "%7.2f") + " " + cell(m.c80, "%7.2f") + " " +
-           cell(m.d50, "%7.3f") + " " + cell(1e3 * m.ts, "%7.1f") + "   " +
+    out += cell(bands.nominalHz(b), "%7g") + " " + figure(Figure::T20, 1.0, "%7.3f", "%6.3f*") + " " +
+           figure(Figure::T30, 1.0, "%7.3f", "%6.3f*") + " " + figure(Figure::Edt, 1.0, "%7.3f", "%6.3f*") + " " +
+           figure(Figure::C50, 1.0, "%7.2f", "%6.2f*") + " " + figure(Figure::C80, 1.0, "%7.2f", "%6.2f*") + " " +
+           figure(Figure::D50, 1.0, "%7.3f", "%6.3f*") + " " + figure(Figure::Ts, 1e3, "%7.1f", "%6.1f*") + "   " +
            (m.shorter_than_filter ? std::string("  short") : cell(m.decay_range_db, "%7.1f")) + "\n";
   }
   if (missing)
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
            "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
   if (limited_any)
-    out += "*: within the reach of the band's analysis filter: the true decay is more than 5 % shorter (the JND of "
-           "EDT, ISO 3382-1 Annex A), or as short as the filter's own; the figure measures the filter too.\n";
+    out += "*: within the reach of the band's analysis filter: the decay that reads this way has a true value more "
+           "than one JND away (ISO 3382-1 Annex A: 5 % for T and EDT, 1 dB for C, 0.05 for D50, 10 ms for Ts), or "
+           "a Dirac reads the same; the figure measures the filter too.\n";
   if (short_band)
     out += "short: the file ends sooner after the onset than the band's analysis filter rings (0.15-0.4 s for "
            "octave bands, up to 1.2 s for third octaves), so the band is not measured.\n";

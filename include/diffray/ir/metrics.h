@@ -16,10 +16,11 @@
 // 10 dB (ISO 3382-1 §5.3.3), or nothing arrives after t_e; C50, C80, D50 and Ts also when the band clears
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
-// band whose filter rings for longer than the file lasts after the onset, and flags each EDT, T20 and T30
-// within its band filter's reach (FilterLimit::limited: the true decay that reads this way is more than 5 %
-// shorter, or as short as the filter's own).
+// band whose filter rings for longer than the file lasts after the onset, and flags each figure within its
+// band filter's reach (FilterLimit::limited: the true figure of the decay that reads this way is more
+// than one JND away, or a Dirac reads the same).
 // Free functions, no state: thread-safe.
+#include <array>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -28,6 +29,13 @@
 #include "diffray/core/bands.h"
 
 namespace diffray::ir {
+
+/// The seven figures of a band, in the order of the table and the JSON.
+enum class Figure { Edt, T20, T30, C50, C80, D50, Ts };
+inline constexpr std::array<Figure, 7> kAllFigures{Figure::Edt, Figure::T20, Figure::T30, Figure::C50,
+                                                   Figure::C80, Figure::D50, Figure::Ts};
+/// "edt", "t20", … (the JSON keys).
+const char* figureName(Figure figure);
 
 struct BandMetrics {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -44,10 +52,13 @@ struct BandMetrics {
   /// (BandFilter::ringSamples(band)), so the band signal is cut off while it still holds much of the
   /// filter's own response; every figure is then NaN (metricsJson adds "shorter_than_filter": true).
   bool shorter_than_filter = false;
-  /// metricsFromSignal: the figure is within the band filter's reach (FilterLimit::limited, filter_limit.h):
-  /// the true decay that reads this way is more than 5 % shorter, or as short as the filter's own. The
-  /// figure is still given; metricsJson lists it under "filter_limited", metricsTable marks it with '*'.
-  bool edt_filter_limited = false, t20_filter_limited = false, t30_filter_limited = false;
+  /// metricsFromSignal: per figure (index: Figure), whether it is within its band filter's reach
+  /// (FilterLimit::limited, filter_limit.h): the true figure of the decay that reads this way is more than
+  /// one JND away, or a Dirac reads within one JND of it. The figure is still given; metricsJson lists it
+  /// under "filter_limited", metricsTable marks it with '*'.
+  std::array<bool, 7> filter_limited{};
+  bool limited(Figure f) const { return filter_limited[static_cast<size_t>(f)]; }
+  double value(Figure f) const;  ///< the figure's value
 };
 
 /// Metrics of one band's energy histogram (J/m² per bin of width bin_s seconds, first bin at time 0).
