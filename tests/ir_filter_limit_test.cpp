@@ -82,18 +82,36 @@ TEST(FilterLimit, TheModelFallsWithTAndRejectsANonPositiveT) {
   EXPECT_LT(previous, 0.02);  // 3.2 s at 63 Hz: within 2 %
   EXPECT_THROW(limit.relativeBias(0, Figure::T20, 0.0), core::InputError);
   EXPECT_FALSE(limit.limited(0, Figure::T20, NAN));
-  // The closed forms the flags compare with (ISO 3382-1's definitions applied to 10^(−6t/T)).
-  EXPECT_NEAR(FilterLimit::trueValue(Figure::C80, 1.0), 10.0 * std::log10(std::pow(10.0, 0.48) - 1.0), 1e-12);
-  EXPECT_NEAR(FilterLimit::trueValue(Figure::D50, 0.5), 1.0 - std::pow(10.0, -0.6), 1e-12);
-  EXPECT_NEAR(FilterLimit::trueValue(Figure::Ts, 1.0), 1.0 / 13.815510557964274, 1e-12);
+  // A Ts read from energy ahead of the onset can be negative; no decay has one, and the rule says so
+  // instead of asking the model about a decay of zero length.
+  EXPECT_TRUE(limit.limited(0, Figure::Ts, -0.02));
+}
+
+// The closed forms the flags compare with, against metricsFromEnergy (ISO 3382-1's definitions, summed
+// numerically) of an unfiltered exponential 10^(−6t/T) in 0.1 ms bins, 3T long.
+TEST(FilterLimit, TrueValuesAreTheMetricsOfAnExponential) {
+  for (double t : {0.3, 1.0, 2.5}) {
+    SCOPED_TRACE(t);
+    const double bin = 1e-4;
+    std::vector<double> e(static_cast<size_t>(3.0 * t / bin));
+    for (size_t i = 0; i < e.size(); ++i) e[i] = std::pow(10.0, -6.0 * (static_cast<double>(i) + 0.5) * bin / t);
+    const BandMetrics m = metricsFromEnergy(e, bin, 0);
+    EXPECT_NEAR(m.c50, FilterLimit::trueValue(Figure::C50, t), 0.02);
+    EXPECT_NEAR(m.c80, FilterLimit::trueValue(Figure::C80, t), 0.02);
+    EXPECT_NEAR(m.d50, FilterLimit::trueValue(Figure::D50, t), 1e-3);
+    EXPECT_NEAR(m.ts, FilterLimit::trueValue(Figure::Ts, t), 1e-3 * t);
+    EXPECT_NEAR(m.t30, FilterLimit::trueValue(Figure::T30, t), 0.01 * t);
+  }
 }
 
 // The model against measurement. The model is the expected band energy of decaying white noise (for
 // x = w·a with white w, E[(x ∗ h)²] = a² ∗ h²), so the oracle is that expectation estimated directly:
 // the squared band signals of 256 noise signals through the same filter, averaged, and measured once
 // (metricsFromEnergy from the decay's start). Its statistical error comes from 16 groups of 16 seeds
-// measured separately (standard error = their spread / 4); the tolerance is 4 of those (Student's t with
-// 15 degrees of freedom at 0.1 %: the spread of 16 groups is itself uncertain). A 63 Hz C80 from 80 ms
+// measured separately (standard error = their spread / 4); the tolerance is 4.07 of those (Student's t
+// with 15 degrees of freedom, two-sided 0.1 %: the spread of 16 groups is itself uncertain). A first
+// version, 96 decays in 8 groups within 3 s.e., failed on the 63 Hz C80: 8 groups had underestimated its
+// scatter, which 512 decays confirmed (their mean converges to the model). A 63 Hz C80 from 80 ms
 // of a 44 Hz wide band scatters by ~2 dB per signal, which is why so many. Cases: two decays the EDT flag
 // marks (model bias +10–12 %) and two it passes (+1.5–2 %), in the two lowest octaves; EDT and C80.
 TEST(StatFilterLimit, TheModelIsTheExpectedReadingOfDecayingNoise) {
@@ -130,7 +148,7 @@ TEST(StatFilterLimit, TheModelIsTheExpectedReadingOfDecayingNoise) {
     const double se = std::sqrt(sq / (groups - 1) / groups) / c.t_s;
     const double measured = metricsFromEnergy(all, 1.0 / kFs, start).edt / c.t_s - 1.0;
     const double model = limit.relativeBias(0, Figure::Edt, c.t_s);
-    EXPECT_NEAR(measured, model, 4.0 * se) << "measured " << measured << ", model " << model << ", se " << se;
+    EXPECT_NEAR(measured, model, 4.07 * se) << "measured " << measured << ", model " << model << ", se " << se;
     EXPECT_EQ(limit.limited(0, Figure::Edt, c.t_s * (1.0 + model)), c.flagged) << model;
     // C80 the same way, in dB.
     double c_mean = 0.0, c_sq = 0.0;
@@ -138,7 +156,7 @@ TEST(StatFilterLimit, TheModelIsTheExpectedReadingOfDecayingNoise) {
     for (double v : group_c80) c_sq += (v - c_mean) * (v - c_mean);
     const double c_se = std::sqrt(c_sq / (groups - 1) / groups);
     const double c_measured = metricsFromEnergy(all, 1.0 / kFs, start).c80;
-    EXPECT_NEAR(c_measured, limit.modelReading(0, c.t_s).c80, 4.0 * c_se) << "C80 se " << c_se;
+    EXPECT_NEAR(c_measured, limit.modelReading(0, c.t_s).c80, 4.07 * c_se) << "C80 se " << c_se;
   }
 }
 

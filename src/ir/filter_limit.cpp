@@ -49,10 +49,18 @@ BandMetrics FilterLimit::modelReading(int band, double t_s) const {
   // (proportional to its integral over the bin, and the metrics do not depend on scale).
   const long e_bins = static_cast<long>(std::ceil(2.0 * t_s / bin_s));
   const double decay = std::pow(10.0, -6.0 * bin_s / t_s);  // per bin
+  // conv[m] = Σ_{i < e_bins} decay^i · g[m − i], by the recursion conv[m] = decay·conv[m − 1] + g[m] −
+  // decay^e_bins · g[m − e_bins]: O(e_bins + g_bins) instead of their product (a decay of a few ms in a
+  // low band has bins of one sample against the filter's tens of thousands).
   std::vector<double> conv(static_cast<size_t>(e_bins + g_bins), 0.0);
-  double level = 1.0;
-  for (long i = 0; i < e_bins; ++i, level *= decay)
-    for (long j = 0; j < g_bins; ++j) conv[static_cast<size_t>(i + j)] += level * g[static_cast<size_t>(j)];
+  const double decay_all = std::pow(decay, static_cast<double>(e_bins));
+  double run = 0.0;
+  for (long m = 0; m < e_bins + g_bins; ++m) {
+    run *= decay;
+    if (m < g_bins) run += g[static_cast<size_t>(m)];
+    if (m >= e_bins && m - e_bins < g_bins) run -= decay_all * g[static_cast<size_t>(m - e_bins)];
+    conv[static_cast<size_t>(m)] = std::max(run, 0.0);  // rounding may leave −ε where it should be 0
+  }
   // Time zero where the envelope starts: bin lead_bins of the convolution.
   return metricsFromEnergy(conv, bin_s, lead_bins);
 }
@@ -94,7 +102,8 @@ double decayTimeOf(Figure figure, double v) {
     case Figure::C50:
     case Figure::C80: {
       const double te = figure == Figure::C50 ? 0.05 : 0.08;
-      return 6.0 * te / std::log10(std::pow(10.0, v / 10.0) + 1.0);  // C → +∞: T → 0; C → −∞: T → ∞
+      // log10(10^(C/10) + 1) by log1p, which keeps very negative C; C → +∞: T → 0; C → −∞: T → ∞.
+      return 6.0 * te * std::log(10.0) / std::log1p(std::pow(10.0, v / 10.0));
     }
     case Figure::D50:
       if (v >= 1.0) return 0.0;
@@ -142,13 +151,16 @@ bool FilterLimit::limited(int band, Figure figure, double measured) const {
   // The true decay reads as `measured`. It is shorter than t_short if some decay shorter than t_short reads
   // at least that far: the model at t_short, or a Dirac (as T → 0 the readings level off near ownFigure and
   // need not keep falling: a Dirac's T30 in the 2–8 kHz octaves reads what a 0.04 s decay does).
-  if (t_short > 0.0) {
+  if (t_short > 0.0 && std::isfinite(t_short)) {
     double reading = modelReading(band, t_short).value(figure);
     if (!std::isfinite(reading)) return true;  // the model cannot tell
     if (std::isfinite(own)) reading = rising ? std::max(reading, own) : std::min(reading, own);
     if (rising ? reading >= measured : reading <= measured) return true;
   }
-  // It is longer than t_long if t_long reads short of it (an infinitely long decay reads as itself).
+  // It is longer than t_long if t_long reads short of it (an infinitely long decay reads as itself). No
+  // decay at all has a true figure as low as hi (a Ts 10 ms below zero, read from energy ahead of the onset):
+  // then nothing within one JND reads this way.
+  if (!(t_long > 0.0)) return true;
   if (std::isfinite(t_long)) {
     const double reading = modelReading(band, t_long).value(figure);
     if (!std::isfinite(reading)) return true;

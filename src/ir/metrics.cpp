@@ -406,9 +406,9 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
            "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
   if (limited_any)
-    out += "*: within the reach of the band's analysis filter: the decay that reads this way has a true value more "
-           "than one JND away (ISO 3382-1 Annex A: 5 % for T and EDT, 1 dB for C, 0.05 for D50, 10 ms for Ts), or "
-           "a Dirac reads the same; the figure measures the filter too.\n";
+    out += "*: within the reach of the band's analysis filter: the exponential decay that reads this way has a true "
+           "value more than one JND away (ISO 3382-1 Annex A: 5 % for T and EDT, 1 dB for C, 0.05 for D50, 10 ms for "
+           "Ts), or cannot be told from a Dirac; the figure measures the filter too.\n";
   if (short_band)
     out += "short: the file ends sooner after the onset than the band's analysis filter rings (0.15-0.4 s for "
            "octave bands, up to 1.2 s for third octaves), so the band is not measured.\n";

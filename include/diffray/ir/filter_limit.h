@@ -19,6 +19,8 @@
 // counts at the short end too: m is flagged when a decay too short to be within one JND, or a Dirac, reads
 // at least as far as m. A decay time at most 5 % above a Dirac's reading is flagged outright: the readings
 // are level there, and the model and a measurement of the same response differ by a few per cent.
+// The inversion assumes the band's response is an exponential decay from time zero: with a strong direct
+// sound the implied decay is not the room's, and the flag is a proxy for "not trustworthy to one JND".
 // Units: seconds, dB, fractions; band indices as the BandFilter's. Immutable after construction;
 // thread-safe.
 #include <vector>
@@ -42,8 +44,8 @@ class FilterLimit {
   static double trueValue(Figure figure, double t_s);
   /// EDT, T20, T30 only: modelReading's figure over t_s, minus 1 (NaN if not measurable).
   double relativeBias(int band, Figure figure, double t_s) const;
-  /// The measured value comes from a decay whose true figure is more than one JND away, or a Dirac reads
-  /// within one JND of it (false for a non-finite value).
+  /// The measured value comes from a decay whose true figure is more than one JND away (the rule above;
+  /// false for a non-finite value).
   bool limited(int band, Figure figure, double measured) const;
   /// The figure a unit impulse reads through band `band` (the model as T → 0); NaN if not measurable.
   double ownFigure(int band, Figure figure) const;

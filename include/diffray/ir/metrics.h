@@ -17,8 +17,8 @@
 // its noise floor by less than 10 dB (they would measure the noise). metricsFromSignal filters the signal with its
 // mean removed and the filters' ringing time of zeros in front (BandFilter::ringSamples), and measures no
 // band whose filter rings for longer than the file lasts after the onset, and flags each figure within its
-// band filter's reach (FilterLimit::limited: the true figure of the decay that reads this way is more
-// than one JND away, or a Dirac reads the same).
+// band filter's reach (FilterLimit::limited: the exponential decay that reads this way through the
+// filter has a true figure more than one JND away, or cannot be told from a Dirac).
 // Free functions, no state: thread-safe.
 #include <array>
 #include <limits>
@@ -53,9 +53,9 @@ struct BandMetrics {
   /// filter's own response; every figure is then NaN (metricsJson adds "shorter_than_filter": true).
   bool shorter_than_filter = false;
   /// metricsFromSignal: per figure (index: Figure), whether it is within its band filter's reach
-  /// (FilterLimit::limited, filter_limit.h): the true figure of the decay that reads this way is more than
-  /// one JND away, or a Dirac reads within one JND of it. The figure is still given; metricsJson lists it
-  /// under "filter_limited", metricsTable marks it with '*'.
+  /// (FilterLimit::limited, filter_limit.h): the exponential decay that reads this way through the filter
+  /// has a true figure more than one JND away, or cannot be told from a Dirac. The figure is still given;
+  /// metricsJson lists it under "filter_limited", metricsTable marks it with '*'.
   std::array<bool, 7> filter_limited{};
   bool limited(Figure f) const { return filter_limited[static_cast<size_t>(f)]; }
   double value(Figure f) const;  ///< the figure's value
