@@ -25,6 +25,7 @@ void Progress::add(std::uint64_t done) {
 }
 
 void Progress::draw(std::uint64_t done) {
+  drawn_ = true;
   const double frac = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double eta = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
@@ -41,6 +42,7 @@ void Progress::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!enabled_ || finished_) return;
   finished_ = true;
+  if (!drawn_) return;  // done before the first redraw (100 ms): no bar to complete, no line left behind
   draw(done_.load());
   std::fprintf(stderr, "\n");
 }

@@ -1,6 +1,7 @@
 #pragma once
 // A progress bar on stderr, drawn only when stderr is a terminal (never in CI logs or pipes).
-// add() is thread-safe and cheap; redraws are rate-limited to about 10 per second.
+// add() is thread-safe and cheap; redraws are rate-limited to about 10 per second, and work finished
+// before the first redraw (100 ms) leaves nothing on the terminal.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -26,6 +27,7 @@ class Progress {
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool finished_ = false;
+  bool drawn_ = false;  ///< a redraw happened (under mutex_): work done in under 100 ms leaves no line
 };
 
 /// For work whose size is known only once it starts (a WBSDF table learns its row count from its
