@@ -12,6 +12,7 @@
 #include <complex>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -187,6 +188,36 @@ TEST(CompareScene, UtdMatchesTheExactHalfPlaneAwayFromTheBoundary) {
               worst_fine);
   // Only the models asked for.
   for (const auto& r : c.rows) EXPECT_TRUE(r.model == "utd" || r.model == "exact") << r.model;
+}
+
+// CompareOptions::model_progress: one callback per point model, named after it, ticked once per listener
+// and band and once per listener's fine grid, each tick carrying that count; the levels are unchanged.
+TEST(CompareScene, PointModelsReportTheirProgress) {
+  dv::HalfPlaneSpec spec;
+  spec.listener_phi_rad = {210.0 * kDeg, 270.0 * kDeg};
+  const dr::Room room = dv::makeHalfPlaneScene(spec);
+  dc::CompareOptions o;
+  o.models = {"utd", "exact"};
+  o.fine_per_octave = 2;
+  const dc::SceneComparison quiet = dc::compareScene(room, o);
+  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> ticks;  // model → (calls, last total)
+  std::mutex mutex;
+  o.model_progress = [&](const std::string& model) {
+    return [&, model](std::uint64_t total) {
+      std::lock_guard<std::mutex> lock(mutex);
+      ++ticks[model].first;
+      ticks[model].second = total;
+    };
+  };
+  const dc::SceneComparison c = dc::compareScene(room, o);
+  const auto steps = static_cast<std::uint64_t>(room.listeners.size() * (room.bands.size() + 1));
+  ASSERT_EQ(ticks.size(), 2u);  // UTD and the half-plane reference
+  for (const auto& [model, t] : ticks) {
+    EXPECT_EQ(t.first, steps) << model;
+    EXPECT_EQ(t.second, steps) << model;
+  }
+  ASSERT_EQ(c.rows.size(), quiet.rows.size());
+  for (std::size_t i = 0; i < c.rows.size(); ++i) EXPECT_EQ(c.rows[i].level_db, quiet.rows[i].level_db);
 }
 
 TEST(CompareScene, TwoOccludersHaveNoExactReferenceAndSayWhy) {

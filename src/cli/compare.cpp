@@ -195,6 +195,10 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     co.aim = o->aim;
     core::Progress progress("compare " + room.name, o->rays);
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+    co.model_progress = [&progress, &room](const std::string& model) {
+      progress.finish();  // the rays are traced first: close their bar before a model's
+      return core::progressOfUnknownSize("compare " + room.name + " " + model);
+    };
     const compare::SceneComparison c = compare::compareScene(room, co);
     progress.finish();
     for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << w << "\n";

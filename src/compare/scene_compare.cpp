@@ -32,15 +32,19 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
   std::vector<double> fine;
   for (int j = 0; j < n_fine; ++j) fine.push_back(f_lo * std::pow(f_hi / f_lo, static_cast<double>(j) / (n_fine - 1)));
   std::vector<std::vector<LevelRow>> per(nl);
+  const auto tick = o.model_progress ? o.model_progress(m.name()) : std::function<void(std::uint64_t)>();
+  const auto steps = static_cast<std::uint64_t>(nl) * static_cast<std::uint64_t>(nb + 1);
   tbb::parallel_for(0, nl, [&](int l) {
     const room::Listener& li = room.listeners[l];
     for (int b = 0; b < nb; ++b) {
       const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
                                           room.bands.upperHz(b), o.band_points);
       per[l].push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
+      if (tick) tick(steps);
     }
     const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
     for (std::size_t j = 0; j < fine.size(); ++j) per[l].push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
+    if (tick) tick(steps);
   });
   for (auto& v : per) rows.insert(rows.end(), v.begin(), v.end());
 }

@@ -133,7 +133,7 @@ wbsdf::TableOptions axisTableOptions(const wbsdf::Microstructure& m, double delt
 }
 
 std::unique_ptr<PreparedScene> prepareScene(const LightScene& s, bool brute_force,
-                                            const TableProgressFactory& table_progress) {
+                                            const core::ProgressFactory& table_progress) {
   auto out = std::make_unique<PreparedScene>();
   out->spec = &s;
   out->camera = Camera(s.camera);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "diffray/core/progress.h"
 #include "diffray/room/room.h"
 
 namespace diffray::compare {
@@ -26,6 +27,9 @@ struct CompareOptions {
   /// image): far fewer rays for the same noise, valid only when every path to the listeners crosses it.
   bool aim = false;
   std::function<void(std::uint64_t)> on_progress;
+  /// Progress of the point models (UTD, exact), one callback per model, labelled by its name; each is
+  /// called once per listener and band and once per listener's fine grid (e.g. core::progressOfUnknownSize).
+  core::ProgressFactory model_progress;
 };
 
 struct LevelRow {

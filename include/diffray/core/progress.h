@@ -35,5 +35,8 @@ class Progress {
 /// call's `total`, advanced by one per call, and finished when the last copy of the callback is destroyed.
 /// Thread-safe.
 std::function<void(std::uint64_t total)> progressOfUnknownSize(std::string label);
+/// Makes one such callback per piece of work from its label (progressOfUnknownSize is one): what library
+/// code that runs several long steps takes, so that the caller decides whether bars are drawn.
+using ProgressFactory = std::function<std::function<void(std::uint64_t total)>(const std::string& label)>;
 
 }  // namespace diffray::core

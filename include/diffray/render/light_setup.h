@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "diffray/core/progress.h"
 #include "diffray/render/camera.h"
 #include "diffray/render/light_scene.h"
 #include "diffray/transport/scene.h"
@@ -44,13 +45,10 @@ struct PreparedScene {
 wbsdf::TableOptions axisTableOptions(const wbsdf::Microstructure& m, double delta_cos, double lambda_min_m,
                                      double lambda_max_m, double footprint_m, double throw_m);
 
-/// Makes a table build's progress callback (TableOptions::on_row) from a label, e.g.
-/// core::progressOfUnknownSize for a bar on the terminal.
-using TableProgressFactory = std::function<std::function<void(std::uint64_t)>(const std::string& label)>;
-
 /// Builds tables and the Embree scene (brute_force: the test back end). Throws InputError for a table that
-/// cannot be built. table_progress (optional) gets one callback per table, labelled by occluder and axis.
+/// cannot be built. table_progress (optional; e.g. core::progressOfUnknownSize) makes one callback per table
+/// (TableOptions::on_row), labelled by occluder and axis.
 std::unique_ptr<PreparedScene> prepareScene(const LightScene& spec, bool brute_force = false,
-                                            const TableProgressFactory& table_progress = {});
+                                            const core::ProgressFactory& table_progress = {});
 
 }  // namespace diffray::render
