@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 
+#include "temp_dir.h"
 #include "diffray/audio/wav.h"
 #include "diffray/core/error.h"
 
@@ -18,13 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("diffray_wav_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  int entries() const { return static_cast<int>(std::distance(fs::directory_iterator(path), fs::directory_iterator())); }
-};
+using diffray::test::TempDir;
 
 std::string errorOf(const std::function<void()>& f) {
   try {
@@ -36,7 +31,7 @@ std::string errorOf(const std::function<void()>& f) {
 }
 
 TEST(AudioWav, Float32RoundTripIsBitExact) {
-  TempDir dir;
+  const TempDir dir("wav_test");
   AudioBuffer a;
   a.sample_rate_hz = 44100;
   a.channels = 2;
@@ -65,7 +60,7 @@ TEST(AudioWav, Float32RoundTripIsBitExact) {
 TEST(AudioWav, NoTimestampedChunkSoSameSamplesGiveSameBytes) {
   // libsndfile's PEAK chunk (float WAV) holds the wall-clock time of writing: with it, two runs with the same
   // seed wrote different files. The header must hold nothing but the format and the samples.
-  TempDir dir;
+  const TempDir dir("wav_test");
   AudioBuffer a;
   a.sample_rate_hz = 48000;
   a.channels = 1;
@@ -78,7 +73,7 @@ TEST(AudioWav, NoTimestampedChunkSoSameSamplesGiveSameBytes) {
 }
 
 TEST(AudioWav, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
-  TempDir dir;
+  const TempDir dir("wav_test");
   AudioBuffer good{48000, 1, {0.5, -0.25}};
   writeWavFloat(dir.file("ir.wav"), good);
   AudioBuffer bad = good;
@@ -105,7 +100,7 @@ TEST(AudioWav, SizeLimitIsTheRiff32BitField) {
 }
 
 TEST(AudioWav, ReadErrorsNameTheFileAndTheReason) {
-  TempDir dir;
+  const TempDir dir("wav_test");
   const std::string missing = dir.file("missing.wav");
   const std::string m = errorOf([&] { readAudio(missing); });
   EXPECT_NE(m.find(missing), std::string::npos);

@@ -10,19 +10,12 @@
 
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
+#include "temp_dir.h"
 
 namespace dc = diffray::core;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A fresh, empty folder for one test.
-fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("diffray_atomic_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::string contents(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -35,22 +28,19 @@ void writeText(const std::string& path, const std::string& text) {
   dc::writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
-std::size_t filesIn(const fs::path& d) {
-  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
-}
-
 }  // namespace
 
 TEST(CoreAtomicFile, WritesWholeFileAndLeavesNoTemporary) {
-  const fs::path d = freshDir("whole");
+  const diffray::test::TempDir dir("atomic_whole");
+  const fs::path& d = dir.path;
   writeText((d / "a.txt").string(), "hello");
   EXPECT_EQ(contents(d / "a.txt"), "hello");
-  EXPECT_EQ(filesIn(d), 1u);
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 1);
 }
 
 TEST(CoreAtomicFile, FailedWriteLeavesTargetUntouched) {
-  const fs::path d = freshDir("failed");
+  const diffray::test::TempDir dir("atomic_failed");
+  const fs::path& d = dir.path;
   writeText((d / "a.txt").string(), "old");
   EXPECT_THROW(dc::writeFileAtomically((d / "a.txt").string(),
                                        [](std::ostream& out) {
@@ -59,8 +49,7 @@ TEST(CoreAtomicFile, FailedWriteLeavesTargetUntouched) {
                                        }),
                std::runtime_error);
   EXPECT_EQ(contents(d / "a.txt"), "old");
-  EXPECT_EQ(filesIn(d), 1u);
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 1);
 }
 
 TEST(CoreOutputFiles, StagingNameKeepsFolderAndExtension) {
@@ -73,7 +62,8 @@ TEST(CoreOutputFiles, StagingNameKeepsFolderAndExtension) {
 }
 
 TEST(CoreOutputFiles, CommitReplacesEveryFile) {
-  const fs::path d = freshDir("commit");
+  const diffray::test::TempDir dir("atomic_commit");
+  const fs::path& d = dir.path;
   const std::string a = (d / "a.wav").string(), b = (d / "a.json").string();
   writeText(a, "old a");
   writeText(b, "old b");
@@ -86,12 +76,12 @@ TEST(CoreOutputFiles, CommitReplacesEveryFile) {
   }
   EXPECT_EQ(contents(a), "new a");
   EXPECT_EQ(contents(b), "new b");
-  EXPECT_EQ(filesIn(d), 2u);
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 2);
 }
 
 TEST(CoreOutputFiles, LaterFailureKeepsThePreviousRunsFiles) {
-  const fs::path d = freshDir("rerun");
+  const diffray::test::TempDir dir("atomic_rerun");
+  const fs::path& d = dir.path;
   const std::string a = (d / "a.wav").string(), b = (d / "a.csv").string(), c = (d / "a.json").string();
   writeText(a, "run 1 a");
   writeText(b, "run 1 b");
@@ -108,25 +98,25 @@ TEST(CoreOutputFiles, LaterFailureKeepsThePreviousRunsFiles) {
   EXPECT_EQ(contents(a), "run 1 a");
   EXPECT_EQ(contents(b), "run 1 b");
   EXPECT_EQ(contents(c), "run 1 c");
-  EXPECT_EQ(filesIn(d), 3u);  // no staged file left
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 3);  // no staged file left
 }
 
 TEST(CoreOutputFiles, FirstRunFailureLeavesNothing) {
-  const fs::path d = freshDir("first");
+  const diffray::test::TempDir dir("atomic_first");
+  const fs::path& d = dir.path;
   try {
     dc::OutputFiles files;
     files.write((d / "a.wav").string(), [](const std::string& f) { writeText(f, "a"); });
     throw dc::InputError("plot", "gnuplot failed");
   } catch (const dc::InputError&) {
   }
-  EXPECT_EQ(filesIn(d), 0u);
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 0);
 }
 
 // A writer's error names the file the user asked for, not the staging file it was writing.
 TEST(CoreOutputFiles, WriterErrorsNameTheTarget) {
-  const fs::path d = freshDir("message");
+  const diffray::test::TempDir dir("atomic_message");
+  const fs::path& d = dir.path;
   const std::string target = (d / "a.wav").string();
   try {
     dc::OutputFiles files;
@@ -136,13 +126,13 @@ TEST(CoreOutputFiles, WriterErrorsNameTheTarget) {
     EXPECT_EQ(e.where(), target);
     EXPECT_EQ(std::string(e.what()), target + ": write failed (" + target + ")");
   }
-  EXPECT_EQ(filesIn(d), 0u);
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 0);
 }
 
 // A rename that fails (the target is a folder) is reported naming it; the files not renamed are removed.
 TEST(CoreOutputFiles, FailedCommitNamesTheTargetAndCleansUp) {
-  const fs::path d = freshDir("commitfail");
+  const diffray::test::TempDir dir("atomic_commitfail");
+  const fs::path& d = dir.path;
   fs::create_directories(d / "b.csv" / "inside");  // a non-empty folder: no file can be renamed over it
   const std::string a = (d / "a.wav").string(), b = (d / "b.csv").string(), c = (d / "c.json").string();
   try {
@@ -158,6 +148,5 @@ TEST(CoreOutputFiles, FailedCommitNamesTheTargetAndCleansUp) {
   EXPECT_EQ(contents(a), "a");              // renamed before the failure: stays
   EXPECT_TRUE(fs::is_directory(b));         // untouched
   EXPECT_FALSE(fs::exists(c));              // not renamed, and its staged file removed
-  EXPECT_EQ(filesIn(d), 2u);                // a.wav and the folder
-  fs::remove_all(d);
+  EXPECT_EQ(dir.entries(), 2);                // a.wav and the folder
 }

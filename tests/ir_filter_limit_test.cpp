@@ -31,6 +31,15 @@ std::vector<double> decayingNoise(double t_s, std::uint64_t seed, long start = s
   return p;
 }
 
+// The standard error of the mean of independent estimates, from their spread.
+double standardErrorOfMean(const std::vector<double>& v) {
+  const double n = static_cast<double>(v.size());
+  double mean = 0.0, sq = 0.0;
+  for (double x : v) mean += x / n;
+  for (double x : v) sq += (x - mean) * (x - mean);
+  return std::sqrt(sq / (n - 1.0) / n);
+}
+
 // A Dirac's true figures are those of a decay of zero length: T = 0, C = +∞, D50 = 1, Ts = 0. Whatever
 // it reads more than one JND from them is the filter's, and must be flagged; D50 and Ts read within a JND
 // of the truth and must not be.
@@ -142,21 +151,15 @@ TEST(StatFilterLimit, TheModelIsTheExpectedReadingOfDecayingNoise) {
       group_edt.push_back(gm.edt);
       group_c80.push_back(gm.c80);
     }
-    double mean = 0.0, sq = 0.0;
-    for (double e : group_edt) mean += e / groups;
-    for (double e : group_edt) sq += (e - mean) * (e - mean);
-    const double se = std::sqrt(sq / (groups - 1) / groups) / c.t_s;
-    const double measured = metricsFromEnergy(all, 1.0 / kFs, start).edt / c.t_s - 1.0;
+    const BandMetrics averaged = metricsFromEnergy(all, 1.0 / kFs, start);
+    const double se = standardErrorOfMean(group_edt) / c.t_s;
+    const double measured = averaged.edt / c.t_s - 1.0;
     const double model = limit.relativeBias(0, Figure::Edt, c.t_s);
     EXPECT_NEAR(measured, model, 4.07 * se) << "measured " << measured << ", model " << model << ", se " << se;
     EXPECT_EQ(limit.limited(0, Figure::Edt, c.t_s * (1.0 + model)), c.flagged) << model;
     // C80 the same way, in dB.
-    double c_mean = 0.0, c_sq = 0.0;
-    for (double v : group_c80) c_mean += v / groups;
-    for (double v : group_c80) c_sq += (v - c_mean) * (v - c_mean);
-    const double c_se = std::sqrt(c_sq / (groups - 1) / groups);
-    const double c_measured = metricsFromEnergy(all, 1.0 / kFs, start).c80;
-    EXPECT_NEAR(c_measured, limit.modelReading(0, c.t_s).c80, 4.07 * c_se) << "C80 se " << c_se;
+    const double c_se = standardErrorOfMean(group_c80);
+    EXPECT_NEAR(averaged.c80, limit.modelReading(0, c.t_s).c80, 4.07 * c_se) << "C80 se " << c_se;
   }
 }
 

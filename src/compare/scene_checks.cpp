@@ -58,11 +58,6 @@ bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
   return false;
 }
 
-// Whether the open segment p→q crosses triangle t (its ends excluded by 1e-9 of its length).
-bool segmentCrosses(const Vec3& p, const Vec3& q, const Tri& t) {
-  return room::crossesTriangle(p, q - p, t.a, t.b, t.c, 1e-9, 1.0 - 1e-9);
-}
-
 }  // namespace
 
 double wrapDegrees(double deg) {
@@ -123,8 +118,8 @@ void checkAimReachesListeners(const room::Room& room, const AimRect& aim) {
   for (const room::Listener& l : room.listeners) {
     const Vec3 p = s.position_m, q = l.position_m;
     bool blocked = false;
-    for (const Tri& t : solid)
-      if (segmentCrosses(p, q, t)) {
+    for (const Tri& t : solid)  // the open segment p→q, its ends excluded by 1e-9 of its length
+      if (room::crossesTriangle(p, q - p, t.a, t.b, t.c, 1e-9, 1.0 - 1e-9)) {
         blocked = true;
         break;
       }

@@ -31,12 +31,15 @@ OutputFiles::~OutputFiles() {
 }
 
 void OutputFiles::commit() {
-  while (!staged_.empty()) {
-    const auto [staging, target] = staged_.front();
-    if (std::rename(staging.c_str(), target.c_str()) != 0)
-      throw InputError(target, "cannot rename the finished output into place");  // the destructor cleans up
-    staged_.erase(staged_.begin());
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    const auto& [staging, target] = staged_[i];
+    if (std::rename(staging.c_str(), target.c_str()) != 0) {
+      const std::string failed = target;
+      staged_.erase(staged_.begin(), staged_.begin() + static_cast<std::ptrdiff_t>(i));  // already in place
+      throw InputError(failed, "cannot rename the finished output into place");  // the destructor cleans up
+    }
   }
+  staged_.clear();
 }
 
 void OutputFiles::rethrowNaming(const InputError& e, const std::string& staging, const std::string& path) {

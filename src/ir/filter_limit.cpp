@@ -24,7 +24,6 @@ FilterLimit::FilterLimit(const BandFilter& filter) : fs_(filter.sampleRateHz()) 
       h2[static_cast<size_t>(n + half)] = v * v;
     }
     own_.push_back(metricsFromEnergy(h2, 1.0 / fs_, half));
-    centre_.push_back(half);
     response_.push_back(std::move(h2));
   }
 }
@@ -37,7 +36,7 @@ BandMetrics FilterLimit::modelReading(int band, double t_s) const {
   const long k = std::max(1L, std::lround(t_s * fs_ / 400.0));
   const double bin_s = static_cast<double>(k) / fs_;
   const std::vector<double>& h2 = response_[static_cast<size_t>(band)];
-  const long centre = centre_[static_cast<size_t>(band)];
+  const long centre = static_cast<long>(h2.size() / 2);  // h2 spans ±ringSamples(band) about time 0
   // h_b² summed into bins aligned so that bin c0 starts at time 0.
   const long lead_bins = (centre + k - 1) / k;
   const long first = centre - lead_bins * k;  // sample of h2 at the start of bin 0 (may be negative)

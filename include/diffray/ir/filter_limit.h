@@ -52,8 +52,7 @@ class FilterLimit {
 
  private:
   double fs_;
-  std::vector<long> centre_;                   ///< per band: the sample of h_b² at time 0
-  std::vector<std::vector<double>> response_;  ///< per band: h_b², the impulse at sample centre_[b]
+  std::vector<std::vector<double>> response_;  ///< per band: h_b², odd length, time 0 at the middle sample
   std::vector<BandMetrics> own_;               ///< per band: a Dirac's reading
 };
 
