@@ -98,12 +98,39 @@ TEST(RoomSurfaceEvents, EventWeightsKeepEveryBandsEnergyBalance) {
       EXPECT_NEAR(pr * ps * t.w_diffuse[i][b], (1.0 - alpha) * s, 1e-12) << "band " << b;
       EXPECT_NEAR(pr * (1.0 - ps) * t.w_specular[i][b], (1.0 - alpha) * (1.0 - s), 1e-12) << "band " << b;
       EXPECT_NEAR((1.0 - pr) * t.w_transmit[i][b], tau, 1e-12) << "band " << b;
+      // The same weights in single precision (octave bands): the balance to float rounding.
+      EXPECT_NEAR(pr * ps * t.octave_diffuse[i][b], (1.0 - alpha) * s, 1e-6) << "band " << b;
+      EXPECT_NEAR(pr * (1.0 - ps) * t.octave_specular[i][b], (1.0 - alpha) * (1.0 - s), 1e-6) << "band " << b;
+      EXPECT_NEAR((1.0 - pr) * t.octave_transmit[i][b], tau, 1e-6) << "band " << b;
     }
   }
+  room.bands = core::Bands::thirdOctave();  // other band sets carry no single-precision copy
+  EXPECT_TRUE(makeMaterials(room).octave_diffuse.empty());
   EXPECT_EQ(t.absorbing[4], 1);
   EXPECT_EQ(t.absorbing[0], 0);
   EXPECT_EQ(t.opening[3], 1);
   EXPECT_EQ(t.opening[2], 0);
+}
+
+// Octaves, the bounce loop's single-precision band energies: bands 0–7 round-trip through float, the bands
+// above are dropped, and maxAbs's largest lane is the largest |energy| (signed energies: WBSDF weights),
+// against std::abs and std::max over the doubles.
+TEST(RoomSurfaceEvents, OctavesHoldEightBandsInFloatAndTheirLargestMagnitude) {
+  core::BandArray e = core::bandFill(7.0);
+  const double v[8] = {1.5e-3, -2.25e-2, 0.0, -0.0, 3.0e-7, -4.0e-1, 2.0e-1, 1.0 / 3.0};
+  for (int b = 0; b < 8; ++b) e[b] = v[b];
+  const Octaves o = toOctaves(e);
+  const core::BandArray back = toBands(o);
+  double largest = 0.0;
+  for (int b = 0; b < 8; ++b) {
+    EXPECT_EQ(o[b], static_cast<float>(v[b])) << "band " << b;
+    EXPECT_EQ(back[b], static_cast<double>(static_cast<float>(v[b]))) << "band " << b;
+    largest = std::max(largest, std::abs(v[b]));
+  }
+  for (int b = 8; b < core::kMaxBands; ++b) EXPECT_EQ(back[b], 0.0) << "band " << b;
+  const Quad m = maxAbs(o);
+  EXPECT_EQ(std::max(std::max(m[0], m[1]), std::max(m[2], m[3])), static_cast<float>(largest));
+  for (int k = 0; k < 4; ++k) EXPECT_GE(m[k], 0.0f);
 }
 
 }  // namespace

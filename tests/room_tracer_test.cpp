@@ -90,6 +90,54 @@ TEST(RoomTracer, DirectivityGainHasUnitMeanAndCardioidOnAxis) {
   }
 }
 
+// An aimed emission's weights 1/(4π·pdf) integrate, over the unit square of its two uniforms, to the
+// aim rectangle's solid angle over 4π, whatever the sampling inside it (uniform, or partly log-uniform
+// near the −x edge). Oracle: the solid angle of a rectangle [x1, x2] × [y1, y2] at height h above the
+// foot of the viewpoint, Σ ± atan(x·y/(h·√(x² + y² + h²))) over its corners. Midpoint rule on a 2000 ×
+// 2000 grid whose cell edges include ξ1 = edge_fraction (where the sampling switches branch), so the
+// integrand is smooth in each cell: its error is O(1/N²), below 1e-5 here.
+TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
+  dt::EmissionTarget aim;
+  aim.origin = Vec3(1.0, -0.5, 2.0);
+  aim.ex = Vec3(0.6, 0.8, 0.0);
+  aim.ey = Vec3(0.0, 0.0, 1.0);
+  aim.half_x_m = 0.7;
+  aim.half_y_m = 0.4;
+  aim.edge_scale_m = 0.01;
+  const Vec3 source(-1.0, 2.5, 1.7);
+  const Vec3 n = aim.ex.cross(aim.ey);
+  const Vec3 rel = source - aim.origin;
+  const double h = std::abs(rel.dot(n)), sx = rel.dot(aim.ex), sy = rel.dot(aim.ey);
+  const auto corner = [h](double x, double y) { return std::atan(x * y / (h * std::sqrt(x * x + y * y + h * h))); };
+  const double x1 = -aim.half_x_m - sx, x2 = aim.half_x_m - sx, y1 = -aim.half_y_m - sy, y2 = aim.half_y_m - sy;
+  const double omega = corner(x2, y2) - corner(x1, y2) - corner(x2, y1) + corner(x1, y1);
+  ASSERT_GT(omega, 0.05);  // a sizeable target
+  for (const double edge_fraction : {0.0, 0.25}) {
+    aim.edge_fraction = edge_fraction;
+    const int n_grid = 2000;
+    double sum = 0.0;
+    for (int i = 0; i < n_grid; ++i)
+      for (int j = 0; j < n_grid; ++j) {
+        double scale = 0.0;
+        const Vec3 d = dt::emissionDirection(&aim, source, (i + 0.5) / n_grid, (j + 0.5) / n_grid, scale);
+        ASSERT_NEAR(d.norm(), 1.0, 1e-12);
+        // The ray does go toward the rectangle: it meets its plane inside it.
+        const double t = -rel.dot(n) / d.dot(n);
+        const Vec3 hit = source + t * d - aim.origin;
+        ASSERT_GT(t, 0.0);
+        ASSERT_LE(std::abs(hit.dot(aim.ex)), aim.half_x_m * (1 + 1e-9));
+        ASSERT_LE(std::abs(hit.dot(aim.ey)), aim.half_y_m * (1 + 1e-9));
+        sum += scale;
+      }
+    EXPECT_NEAR(sum / (static_cast<double>(n_grid) * n_grid), omega / (4.0 * diffray::core::kPi), 1e-5 * omega)
+        << "edge_fraction " << edge_fraction;
+  }
+  double scale = 0.0;
+  const Vec3 d = dt::emissionDirection(nullptr, source, 0.3, 0.7, scale);
+  EXPECT_EQ(scale, 1.0);  // uniform emission: weight 1
+  EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+}
+
 TEST(StatRoomTracer, CardioidSourceOnAxisFluence) {
   dr::Room room = boxRoom(Vec3(200, 200, 200), 1.0, 0.0);
   dr::Source s{"S", Vec3(100, 100, 100), 1.0, {}};

@@ -30,10 +30,30 @@ MaterialTable makeMaterials(const room::Room& room) {
     t.w_transmit.push_back(wt);
     t.w_diffuse.push_back(wd);
     t.w_specular.push_back(ws);
+    if (nb == 8) {
+      t.octave_transmit.push_back(toOctaves(wt));
+      t.octave_diffuse.push_back(toOctaves(wd));
+      t.octave_specular.push_back(toOctaves(ws));
+    }
     t.opening.push_back(room.isOpening(index) ? 1 : 0);
     t.absorbing.push_back(mean_r + mean_t > 0 ? 0 : 1);
   }
   return t;
+}
+
+Octaves toOctaves(const core::BandArray& a) {
+  Octaves o;
+  for (int b = 0; b < 4; ++b) {
+    o.lo[b] = static_cast<float>(a[b]);
+    o.hi[b] = static_cast<float>(a[b + 4]);
+  }
+  return o;
+}
+
+core::BandArray toBands(const Octaves& o) {
+  core::BandArray a = core::bandFill(0.0);
+  for (int b = 0; b < 8; ++b) a[b] = o[b];
+  return a;
 }
 
 core::Vec3 sampleLambert(const core::Vec3& n, double u1, double u2) {

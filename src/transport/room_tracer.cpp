@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
+
+#include <emmintrin.h>
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -14,48 +15,6 @@
 namespace diffray::transport {
 
 using core::Vec3;
-
-void RoomTraceResult::merge(const RoomTraceResult& o) {
-  if (listeners.empty()) {
-    listeners = o.listeners;
-    crossings = o.crossings;
-    in_flight = o.in_flight;
-  } else {
-    for (std::size_t i = 0; i < listeners.size(); ++i) {
-      listeners[i].merge(o.listeners[i]);
-      crossings[i] += o.crossings[i];
-    }
-    if (in_flight.bins() > 0) in_flight.merge(o.in_flight);
-  }
-  rays += o.rays;
-  segments += o.segments;
-  escaped += o.escaped;
-  roulette_killed += o.roulette_killed;
-  timed_out += o.timed_out;
-  occluder_events += o.occluder_events;
-  evanescent += o.evanescent;
-}
-
-int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners) {
-  core::requirePositive("length", length_s);
-  core::requirePositive("histogram bin", bin_s);
-  const double bins = std::max(1.0, std::ceil(length_s / bin_s));
-  const double cells = bins * bands * static_cast<double>(std::max<std::size_t>(listeners, 1));
-  if (!(cells <= kMaxHistogramCells)) {
-    std::ostringstream why;
-    why.precision(3);
-    why << "an IR of " << length_s << " s in bins of " << bin_s << " s for " << bands << " bands and " << listeners
-        << " listener(s) needs " << cells << " histogram cells, more than the limit of " << kMaxHistogramCells
-        << "; use wider bins or a shorter IR (ir_length_s, max_length_s, --length)";
-    throw core::InputError("output.histogram_bin_s", why.str());
-  }
-  return static_cast<int>(bins);
-}
-
-double directivityGain(const room::Directivity& d, double cos_theta) {
-  const double amp = d.a + (1.0 - d.a) * cos_theta;
-  return amp * amp / (d.a * d.a + (1.0 - d.a) * (1.0 - d.a) / 3.0);
-}
 
 namespace {
 
@@ -71,6 +30,22 @@ constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.68
 
 // Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
 using Pair = double __attribute__((vector_size(16)));
+// The band energies the bounce loop carries: Octaves for octave bands (NB = 8), else a BandArray.
+template <int NB>
+struct EnergyOf {
+  using type = core::BandArray;
+};
+template <>
+struct EnergyOf<8> {
+  using type = Octaves;
+};
+template <int NB>
+typename EnergyOf<NB>::type carried(const core::BandArray& e) {
+  if constexpr (NB == 8) return toOctaves(e);
+  else return e;
+}
+const core::BandArray& asBands(const core::BandArray& e) { return e; }
+core::BandArray asBands(const Octaves& e) { return toBands(e); }
 
 struct Tracer {
   const room::Room& room;
@@ -92,14 +67,15 @@ struct Tracer {
   std::vector<double> air_table;     ///< [bin][band]: e^{−m_b·s_k}, s_k the path length at bin k's centre
   std::vector<double> air_centre_m;  ///< s_k
   std::vector<int> floor_plane;      ///< per occluder: the mirror plane of a door's floor (sill), or −1
+  std::vector<char> special;         ///< per triangle: an occluder's, an opening or absorbing (the cold path)
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
   // listeners whose score next-event estimation took (bit l of `skip_listeners`).
   // NB: the band count when known at compile time (the loops over bands unroll and vectorise), else 0.
-  template <int NB>
+  template <int NB, class Energy>
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
-             const core::BandArray& energy, bool skip, std::uint64_t skip_listeners = 0) const {
+             const Energy& energy, bool skip, std::uint64_t skip_listeners = 0) const {
     const int nb = NB > 0 ? NB : bands;
     // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
     // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
@@ -107,19 +83,24 @@ struct Tracer {
     // the three signed excesses is then negative (each with a margin above its rounding, so that the test
     // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
     const std::size_t n = spheres.size();
+    if (listener_pairs.empty()) return;
     const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
     const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
-    Pair closest = {1.0, 1.0};
-    for (const ListenerPair& lp : listener_pairs) {
+    const auto excessOf = [&](const ListenerPair& lp) {
       const Pair ox = px - lp.x, oy = py - lp.y, oz = pz - lp.z;
       const Pair b = ox * dx + oy * dy + oz * dz;
       const Pair off_line = ox * ox + oy * oy + oz * oz - b * b - lp.r2_plus_margin;
       const Pair behind = b - lp.r_slack, beyond = -b - te - lp.r_slack;
       const Pair outside = behind > beyond ? behind : beyond;
-      const Pair excess = off_line > outside ? off_line : outside;
+      return off_line > outside ? off_line : outside;
+    };
+    Pair closest = excessOf(listener_pairs[0]);
+    for (std::size_t k = 1; k < listener_pairs.size(); ++k) {
+      const Pair excess = excessOf(listener_pairs[k]);
       closest = excess < closest ? excess : closest;
     }
-    if (!(closest[0] < 0.0 || closest[1] < 0.0)) return;
+    // No sign bit set: every excess ≥ 0. (A −0 or a NaN with its sign bit set goes on: chordSpan decides.)
+    if (_mm_movemask_pd(closest) == 0) return;
     for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
       if (!spheres[l].chordSpan(pos.data(), dir.data(), 0.0, t_end, t_in, t_out)) continue;
@@ -152,6 +133,11 @@ struct Tracer {
     bool valid() const { return triangle >= 0; }
   };
   SegmentHit cast(const Vec3& o, const Vec3& d) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    return cast(o, d, context);
+  }
+  SegmentHit cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context) const {
     SegmentHit h;
     const RTCScene scene = geometry.embreeScene();
     if (!scene) {
@@ -160,20 +146,19 @@ struct Tracer {
       h.triangle = g.valid() ? g.triangle : -1;
       return h;
     }
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
     rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.t = rh.ray.tfar;
     h.triangle = static_cast<int>(rh.hit.primID);
-    h.interior = rh.hit.u > 1e-4f && rh.hit.v > 1e-4f && 1.0f - rh.hit.u - rh.hit.v > 1e-4f;
+    h.interior = std::min(std::min(rh.hit.u, rh.hit.v), 1.0f - rh.hit.u - rh.hit.v) > 1e-4f;
     return h;
   }
 
   // The energy the ray holds over the segment [path_m, path_m + length), spread over the time bins it
   // spans (air absorption at the segment's start: the pilot needs the decay, not a precise level).
-  void addInFlight(RoomTraceResult& acc, double path_m, double length, const core::BandArray& energy) const {
+  template <class Energy>
+  void addInFlight(RoomTraceResult& acc, double path_m, double length, const Energy& energy) const {
     receiver::EnergyHistogram& h = acc.in_flight;
     const double c = opt.speed_of_sound_m_s;
     const double t_start = path_m / c, t_stop = std::min((path_m + length) / c, h.lengthSeconds());
@@ -344,24 +329,33 @@ struct Tracer {
   // takes by reference and would make every store in the loop a possible alias): 5 % of the room bench.
   template <int NB>
   void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
-    const int nb = NB > 0 ? NB : bands;
     Vec3 pos = s.pos, dir = s.dir;
-    core::BandArray e = s.e;
+    typename EnergyOf<NB>::type e = carried<NB>(s.e);
     double path_m = s.path_m;
     int order = s.order;
     bool specular_chain = s.specular_chain;
     std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // Options read once (opt is a reference: each use would be two loads). Roulette's threshold also as
+    // four floats rounded up, so that a band at or above them is at or above the threshold.
+    const bool in_flight = opt.in_flight;
+    const int skip_order = opt.skip_order;
+    const double threshold = opt.roulette_level * s.e_start;
+    float threshold_f = static_cast<float>(threshold);
+    if (threshold_f < threshold) threshold_f = std::nextafter(threshold_f, HUGE_VALF);
+    const Quad threshold4 = {threshold_f, threshold_f, threshold_f, threshold_f};
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
       // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
-      SegmentHit hit = cast(pos, dir);
+      SegmentHit hit = cast(pos, dir, context);
       ++acc.segments;
       if (!hit.valid()) {
         // Embree's fast (non-watertight) traversal can let a ray through the shared edge of two triangles:
         // about one ray in 30,000 in a finely tessellated room. Escapes are rare, so look again along a
         // direction turned by ~1e-6 rad before believing one (a real opening lets the retry out too).
         const Vec3 nudged = (dir + 1e-6 * Vec3(dir.y() - dir.z(), dir.z() - dir.x(), dir.x() - dir.y())).normalized();
-        hit = cast(pos, nudged);
+        hit = cast(pos, nudged, context);
         ++acc.segments;
       }
       // Embree's distance is float. Well inside a triangle the hit point is put back on its plane by a
@@ -381,9 +375,9 @@ struct Tracer {
       }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
-      score<NB>(acc, pos, dir, t_end, path_m, e, specular_chain && order <= opt.skip_order, skip_next);
+      score<NB>(acc, pos, dir, t_end, path_m, e, specular_chain && order <= skip_order, skip_next);
       skip_next = 0;
-      if (opt.in_flight) addInFlight(acc, path_m, t_end, e);
+      if (in_flight) addInFlight(acc, path_m, t_end, e);
       if (!hit.valid()) {
         ++acc.escaped;
         return;
@@ -403,14 +397,17 @@ struct Tracer {
       }
       const int m = tri.material;
       const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
+      if (special[hit.triangle]) {
       if (opt.occluders && s.diffractions < opt.max_diffractions) {
         if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
           // The cold path: the occluder code works on the Path.
-          s.pos = pos, s.dir = dir, s.e = e, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
+          s.e = asBands(e);
+          s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
           if (s.band < 0) chooseBand(rng, s);
           if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-          if (!roulette<NB>(acc, rng, s.e, s.e_start)) return;
-          pos = s.pos, dir = s.dir, e = s.e, order = s.order, specular_chain = s.specular_chain;
+          if (!roulette<0>(acc, rng, s.e, threshold)) return;
+          e = carried<NB>(s.e);
+          pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
           skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
           continue;
         }
@@ -422,57 +419,74 @@ struct Tracer {
       // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
       // per-band weights (MaterialTable).
       if (materials.absorbing[m]) return;
+      }
       ++order;
       const double p_reflect = materials.p_reflect[m];
       if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
         const double p_diffuse = materials.p_diffuse[m];
         if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
-          const core::BandArray& w = materials.w_diffuse[m];
-          for (int b = 0; b < nb; ++b) e[b] *= w[b];
+          weigh<NB>(e, materials.w_diffuse, materials.octave_diffuse, m);
           const double u1 = rng.uniform(), u2 = rng.uniform();
           dir = sampleLambert(n_in, u1, u2);
           specular_chain = false;
         } else {
-          const core::BandArray& w = materials.w_specular[m];
-          for (int b = 0; b < nb; ++b) e[b] *= w[b];
+          weigh<NB>(e, materials.w_specular, materials.octave_specular, m);
           dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
           if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
         pos += eps_m * n_in;  // off the surface, on the side the ray now travels
       } else {
-        const core::BandArray& w = materials.w_transmit[m];
-        for (int b = 0; b < nb; ++b) e[b] *= w[b];
+        weigh<NB>(e, materials.w_transmit, materials.octave_transmit, m);
         specular_chain = false;
         pos -= eps_m * n_in;
       }
-      if (!roulette<NB>(acc, rng, e, s.e_start)) return;
+      if (!roulette<NB>(acc, rng, e, threshold, threshold4)) return;
     }
   }
 
   // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
   // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
   // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
-  // level, so rays live a little longer at high frequencies, and no exp per bounce.
+  // level, so rays live a little longer at high frequencies, and no exp per bounce. `threshold`: the
+  // roulette level times the emitted level; `threshold4`: the same as floats rounded up (octaves only).
   template <int NB>
-  bool roulette(RoomTraceResult& acc, core::FastRng& rng, core::BandArray& e, double e_start) const {
-    const int nb = NB > 0 ? NB : bands;
+  bool roulette(RoomTraceResult& acc, core::FastRng& rng, typename EnergyOf<NB>::type& e, double threshold,
+                Quad threshold4 = Quad{}) const {
     double level = 0.0;
-    if constexpr (NB == 8) {  // a pairwise tree (the same maximum): half of it runs two bands at once
-      double m[4];
-      for (int b = 0; b < 4; ++b) m[b] = std::max(std::abs(e[b]), std::abs(e[b + 4]));
-      level = std::max(std::max(m[0], m[2]), std::max(m[1], m[3]));
+    if constexpr (NB == 8) {
+      const Quad m = maxAbs(e);
+      // The common case, some band at or above the threshold (rounded up to a float), in one compare.
+      if (_mm_movemask_ps(reinterpret_cast<__m128>(m >= threshold4))) return true;
+      level = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
     } else {
-      for (int b = 0; b < nb; ++b) level = std::max(level, std::abs(e[b]));
+      for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
     }
-    const double threshold = opt.roulette_level * e_start;
     if (level >= threshold) return true;
     const double q = level / threshold;
     if (!(rng.uniform() < q)) {
       ++acc.roulette_killed;
       return false;
     }
-    for (int b = 0; b < nb; ++b) e[b] /= q;
+    if constexpr (NB == 8) {
+      const float inv = static_cast<float>(1.0 / q);
+      e.lo *= inv;
+      e.hi *= inv;
+    } else {
+      for (int b = 0; b < bands; ++b) e[b] /= q;
+    }
     return true;
+  }
+
+  // Multiplies the band energies by material m's weights for one event (w8: the same as Octaves).
+  template <int NB>
+  void weigh(typename EnergyOf<NB>::type& e, const std::vector<core::BandArray>& w, const std::vector<Octaves>& w8,
+             int m) const {
+    if constexpr (NB == 8) {
+      e.lo *= w8[m].lo;
+      e.hi *= w8[m].hi;
+    } else {
+      for (int b = 0; b < bands; ++b) e[b] *= w[m][b];
+    }
   }
 };
 
@@ -485,7 +499,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}};
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}, {}};
   for (const room::Listener& l : room.listeners) {
     tr.spheres.push_back({l.position_m, l.radius_m});
     // The margins: far above the rounding of the squared distance (terms up to extent², relative 1e-16)
@@ -530,6 +544,11 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
       tr.floor_plane.push_back(found);
     }
   const Vec3 axis = src.directivity.axis.normalized();
+  for (int t = 0; t < static_cast<int>(room.mesh.triangleCount()); ++t) {
+    const int m = geometry.triangle(t).material;
+    tr.special.push_back(tr.materials.opening[m] || tr.materials.absorbing[m] ||
+                         (options.occluders && options.occluders->occluderOf(t) >= 0));
+  }
 
   auto make = [&] {
     RoomTraceResult r;
@@ -545,28 +564,8 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     for (std::uint64_t i = begin; i < end; ++i) {
       int dim = 0;
       const double xi1 = sampler.next(i - begin, dim), xi2 = sampler.next(i - begin, dim);
-      Vec3 dir;
       double scale = 1.0;  // 1/(4π·pdf) of the direction, relative to uniform emission
-      if (const EmissionTarget* t = options.aim) {
-        // d: distance from the −x side; uniform, or with probability edge_fraction log-uniform in d + d0.
-        const double width = 2.0 * t->half_x_m, d0 = t->edge_scale_m, f = t->edge_fraction;
-        const double log_span = std::log((width + d0) / d0);
-        double d;
-        if (xi1 < f) d = std::min(width, d0 * std::exp(xi1 / f * log_span) - d0);
-        else d = (xi1 - f) / (1.0 - f) * width;
-        const double pdf_x = (1.0 - f) / width + (f > 0.0 ? f / ((d + d0) * log_span) : 0.0);
-        const Vec3 q = t->origin + (d - t->half_x_m) * t->ex + (2.0 * xi2 - 1.0) * t->half_y_m * t->ey;
-        const Vec3 to = q - src.position_m;
-        const double dist2 = to.squaredNorm();
-        dir = to / std::sqrt(dist2);
-        const double cos_t = std::abs(dir.dot(t->ex.cross(t->ey)));
-        // 1/(4π·pdf per steradian), pdf = pdf_x·pdf_y·r²/cosθ with pdf_y = 1/(2·half_y).
-        scale = cos_t * 2.0 * t->half_y_m / (pdf_x * 4.0 * core::kPi * dist2);
-      } else {
-        const double z = 1.0 - 2.0 * xi1, phi = core::kTwoPi * xi2;
-        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-        dir = Vec3(r * std::cos(phi), r * std::sin(phi), z);
-      }
+      const Vec3 dir = emissionDirection(options.aim, src.position_m, xi1, xi2, scale);
       const double gain = src.directivity.a == 1.0 ? 1.0 : directivityGain(src.directivity, dir.dot(axis));
       core::BandArray e = core::bandFill(0.0);
       for (int b = 0; b < tr.bands; ++b) e[b] = tr.ray_energy * gain * scale;

@@ -9,6 +9,7 @@
 // reflection into Lambert (s_b/p_s) and specular ((1 − s_b)/(1 − p_s)) parts. Fixed probabilities cost no
 // reduction or division per bounce (the tracer's hot path). Units: α, s, τ are energy fractions; directions
 // are unit vectors in the room's frame. Immutable after makeMaterials; thread-safe to share.
+#include <cstdint>
 #include <vector>
 
 #include "diffray/core/bands.h"
@@ -17,11 +18,37 @@
 
 namespace diffray::transport {
 
+/// Four floats operated on together (GCC/Clang vector extension: one SSE register on x86-64).
+using Quad = float __attribute__((vector_size(16)));
+
+/// The eight octave bands' energies (or weights) in two SSE registers, single precision: the acoustic
+/// tracer's bounce loop carries a path's band energies so, and its band weights and roulette level are a
+/// few vector instructions. A path meets at most a few hundred weights before roulette ends it (relative
+/// rounding ~1e-5, far below the Monte Carlo noise); scores are summed in double. Plain value type.
+struct Octaves {
+  Quad lo, hi;  ///< bands 0–3 and 4–7
+  float operator[](int b) const { return b < 4 ? lo[b & 3] : hi[b & 3]; }
+};
+/// Bands 0–7 of `a`, rounded to float.
+Octaves toOctaves(const core::BandArray& a);
+/// A BandArray holding `o` in bands 0–7 and 0 above.
+core::BandArray toBands(const Octaves& o);
+/// max(|lo|, |hi|) lane by lane: its largest lane is the largest |band energy|.
+inline Quad maxAbs(const Octaves& o) {
+  using Bits = std::uint32_t __attribute__((vector_size(16)));
+  const Bits mask = {0x7fffffffu, 0x7fffffffu, 0x7fffffffu, 0x7fffffffu};
+  const Quad a = reinterpret_cast<Quad>(reinterpret_cast<Bits>(o.lo) & mask);
+  const Quad b = reinterpret_cast<Quad>(reinterpret_cast<Bits>(o.hi) & mask);
+  return a > b ? a : b;
+}
+
 struct MaterialTable {
   std::vector<double> p_reflect, p_diffuse;
   /// Per-band weights of the three events: w_diffuse = (1 − α_b)·s_b/(p_r·p_s), w_specular =
   /// (1 − α_b)(1 − s_b)/(p_r(1 − p_s)), w_transmit = τ_b/(1 − p_r); 0 for an event that cannot happen.
   std::vector<core::BandArray> w_transmit, w_diffuse, w_specular;
+  /// The same weights as Octaves, for rooms with exactly the eight octave bands (else empty).
+  std::vector<Octaves> octave_transmit, octave_diffuse, octave_specular;
   std::vector<char> opening;  ///< τ = 1 in every band: a hole, not a surface (never an event)
   std::vector<char> absorbing;  ///< nothing reflected or transmitted in any band
 };

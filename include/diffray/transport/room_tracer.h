@@ -39,6 +39,12 @@ struct EmissionTarget {
   double edge_scale_m = 0.01;
 };
 
+/// The direction of an emitted ray from two uniforms in [0, 1) (xi1 the first): uniform over the sphere
+/// (aim null), or toward a point of the aim rectangle as documented above; `scale` gets the ray's weight
+/// 1/(4π·pdf per steradian), 1 for uniform emission.
+core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source, double xi1, double xi2,
+                             double& scale);
+
 struct RoomTraceOptions {
   std::uint64_t rays = 100000;
   std::uint64_t seed = 1;
