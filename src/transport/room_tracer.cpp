@@ -396,30 +396,33 @@ struct Tracer {
         skip_after_floor = 0;
       }
       const int m = tri.material;
-      const Vec3 n_in = tri.normal.dot(dir) < 0.0 ? tri.normal : Vec3(-tri.normal);  // faces the ray
-      if (special[hit.triangle]) {
-      if (opt.occluders && s.diffractions < opt.max_diffractions) {
-        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
-          // The cold path: the occluder code works on the Path.
-          s.e = asBands(e);
-          s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
-          if (s.band < 0) chooseBand(rng, s);
-          if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-          if (!roulette<0>(acc, rng, s.e, threshold)) return;
-          e = carried<NB>(s.e);
-          pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
-          skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
+      // The normal facing the ray is side·n; the offsets off the surface below are ±eps_m along it.
+      const double dn = tri.normal.dot(dir);
+      const double side = dn < 0.0 ? 1.0 : -1.0;
+      if (special[hit.triangle]) {  // the cold cases: an occluder, an opening, a surface absorbing all
+        const Vec3 n_in = side * tri.normal;
+        if (opt.occluders && s.diffractions < opt.max_diffractions) {
+          if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
+            // The occluder code works on the Path.
+            s.e = asBands(e);
+            s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
+            if (s.band < 0) chooseBand(rng, s);
+            if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
+            if (!roulette<0>(acc, rng, s.e, threshold)) return;
+            e = carried<NB>(s.e);
+            pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
+            skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
+            continue;
+          }
+        }
+        if (materials.opening[m]) {  // a hole: go on as if nothing were there
+          pos -= eps_m * n_in;
           continue;
         }
-      }
-      if (materials.opening[m]) {  // a hole: go on as if nothing were there
-        pos -= eps_m * n_in;
-        continue;
+        if (materials.absorbing[m]) return;
       }
       // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
       // per-band weights (MaterialTable).
-      if (materials.absorbing[m]) return;
-      }
       ++order;
       const double p_reflect = materials.p_reflect[m];
       if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
@@ -427,18 +430,18 @@ struct Tracer {
         if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
           weigh<NB>(e, materials.w_diffuse, materials.octave_diffuse, m);
           const double u1 = rng.uniform(), u2 = rng.uniform();
-          dir = sampleLambert(n_in, u1, u2);
+          dir = sampleLambert(side * tri.normal, u1, u2);
           specular_chain = false;
         } else {
           weigh<NB>(e, materials.w_specular, materials.octave_specular, m);
-          dir -= 2.0 * dir.dot(tri.normal) * tri.normal;
+          dir -= (2.0 * dn) * tri.normal;
           if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
-        pos += eps_m * n_in;  // off the surface, on the side the ray now travels
+        pos += (side * eps_m) * tri.normal;  // off the surface, on the side the ray now travels
       } else {
         weigh<NB>(e, materials.w_transmit, materials.octave_transmit, m);
         specular_chain = false;
-        pos -= eps_m * n_in;
+        pos -= (side * eps_m) * tri.normal;
       }
       if (!roulette<NB>(acc, rng, e, threshold, threshold4)) return;
     }
