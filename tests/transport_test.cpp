@@ -23,6 +23,7 @@
 #include "diffray/core/math.h"
 #include "diffray/core/parallel.h"
 #include "diffray/geometry/frame.h"
+#include "diffray/geometry/mesh.h"
 #include "diffray/receiver/screen.h"
 #include "diffray/transport/scene.h"
 #include "diffray/transport/tracer.h"
@@ -103,6 +104,33 @@ Vec3 randomUnit(std::mt19937_64& rng) {
 }
 
 }  // namespace
+
+// geometry::rayTriangleT, the double-precision test the brute-force back end and the room checks share:
+// the line through a point built from chosen barycentrics (u, v) at a chosen t comes back with that t,
+// behind the origin too, for points inside and 1e-9 inside an edge or a corner (on an edge itself the
+// answer is rounding's); points 1e-9 outside and a line parallel to its plane give NaN.
+TEST(TransportIntersection, RayTriangleTIsTheLineParameterInsideAndNaNOutside) {
+  const Vec3 a(0.3, -0.2, 1.0), b(1.5, 0.1, 0.8), c(0.2, 1.1, 1.4);
+  const Vec3 n = (b - a).cross(c - a).normalized();
+  std::mt19937_64 rng(11);
+  const double e = 1e-9;
+  const double inside[][2] = {{0.2, 0.3}, {e, 0.5}, {0.5, e}, {0.4, 0.6 - 2 * e}, {e, e}, {1 - 3 * e, e}, {e, 1 - 3 * e}};
+  for (const auto& [u, v] : inside)
+    for (const double t : {2.5, -0.75}) {
+      const Vec3 d = randomUnit(rng);
+      if (std::abs(d.dot(n)) < 0.1) continue;  // grazing: t is ill-conditioned
+      const Vec3 p = a + u * (b - a) + v * (c - a);
+      EXPECT_NEAR(dg::rayTriangleT(p - t * d, d, a, b, c), t, 1e-12) << "u " << u << ", v " << v;
+    }
+  const double outside[][2] = {{-e, 0.5}, {0.5, -e}, {0.4, 0.6 + e}};
+  for (const auto& [u, v] : outside) {
+    const Vec3 p = a + u * (b - a) + v * (c - a);
+    EXPECT_TRUE(std::isnan(dg::rayTriangleT(p - 2.0 * n, n, a, b, c))) << "u " << u << ", v " << v;
+  }
+  // A line parallel to the plane (exactly, in an axis-aligned triangle, so that det is exactly 0).
+  const Vec3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0);
+  EXPECT_TRUE(std::isnan(dg::rayTriangleT(Vec3(0.2, 0.2, 1.0), x, o, x, y)));
+}
 
 TEST(TransportIntersection, EmbreeAndBruteForceMatchAnalyticRectangles) {
   std::mt19937_64 rng(20240611);

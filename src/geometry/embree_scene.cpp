@@ -99,22 +99,10 @@ Hit BruteForceScene::intersect(const Ray& ray) const {
   Hit best;
   double best_t = ray.tfar;
   for (std::size_t i = 0; i < mesh_.triangles.size(); ++i) {
-    // Möller–Trumbore in double.
-    const Vec3& v0 = mesh_.vertices[mesh_.triangles[i][0]];
-    const Vec3 e1 = mesh_.vertices[mesh_.triangles[i][1]] - v0;
-    const Vec3 e2 = mesh_.vertices[mesh_.triangles[i][2]] - v0;
-    const Vec3 p = ray.dir.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-300) continue;
-    const double inv = 1.0 / det;
-    const Vec3 s = ray.origin - v0;
-    const double b1 = s.dot(p) * inv;
-    if (b1 < 0.0 || b1 > 1.0) continue;
-    const Vec3 q = s.cross(e1);
-    const double b2 = ray.dir.dot(q) * inv;
-    if (b2 < 0.0 || b1 + b2 > 1.0) continue;
-    const double t = e2.dot(q) * inv;
-    if (t < ray.tnear || t >= best_t) continue;
+    const auto& tri = mesh_.triangles[i];
+    const double t = rayTriangleT(ray.origin, ray.dir, mesh_.vertices[tri[0]], mesh_.vertices[tri[1]],
+                                  mesh_.vertices[tri[2]]);
+    if (!(t >= ray.tnear && t < best_t)) continue;  // a miss (NaN) too
     best_t = t;
     best.t = t;
     best.triangle = static_cast<int>(i);

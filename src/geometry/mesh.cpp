@@ -1,6 +1,24 @@
 #include "diffray/geometry/mesh.h"
 
+#include <cmath>
+#include <limits>
+
 namespace diffray::geometry {
+
+double rayTriangleT(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  constexpr double kMiss = std::numeric_limits<double>::quiet_NaN();
+  const Vec3 e1 = b - a, e2 = c - a, p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-300) return kMiss;
+  const double inv = 1.0 / det;
+  const Vec3 s = o - a;
+  const double u = s.dot(p) * inv;
+  if (u < 0.0 || u > 1.0) return kMiss;
+  const Vec3 q = s.cross(e1);
+  const double v = d.dot(q) * inv;
+  if (v < 0.0 || u + v > 1.0) return kMiss;
+  return e2.dot(q) * inv;
+}
 
 void Mesh::addRect(const Vec3& centre, const Vec3& half_x, const Vec3& half_y, int object) {
   const int base = static_cast<int>(vertices.size());

@@ -24,17 +24,7 @@ std::string format(const Vec3& p) {
 
 bool crossesTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double t_lo,
                      double t_hi) {
-  const Vec3 e1 = b - a, e2 = c - a, q = d.cross(e2);
-  const double det = e1.dot(q);
-  if (std::abs(det) < 1e-300) return false;
-  const double inv = 1.0 / det;
-  const Vec3 s = o - a;
-  const double u = s.dot(q) * inv;
-  if (u < 0.0 || u > 1.0) return false;
-  const Vec3 r = s.cross(e1);
-  const double v = d.dot(r) * inv;
-  if (v < 0.0 || u + v > 1.0) return false;
-  const double t = e2.dot(r) * inv;
+  const double t = geometry::rayTriangleT(o, d, a, b, c);  // NaN (no hit) fails both comparisons
   return t > t_lo && t < t_hi;
 }
 

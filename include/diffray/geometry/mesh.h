@@ -22,6 +22,10 @@ struct Mesh {
   std::size_t triangleCount() const { return triangles.size(); }
 };
 
+/// The parameter t at which the line o + t·d meets triangle abc, edges included (Möller–Trumbore in
+/// double), or NaN if it misses it or lies in its plane (|det| < 1e-300). t may be negative.
+double rayTriangleT(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// A ray in double precision. Directions need not be normalised for intersection, but diffray's
 /// transport always passes unit directions so that t is a distance in metres.
 struct Ray {
