@@ -106,6 +106,25 @@ TEST(OpeningsWdf, DoubleSlitMatchesDesignFormulaWithSignedMidAirTerm) {
 
 // N equal slits (design.md §1 generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
 // c̄_jk the pair's midpoint. Checks the per-piece pruning of pairs (only pairs placed about x contribute).
+namespace {
+
+// n slits of width a, centres (j − (n−1)/2)·d: design.md §1's pairwise sum, each pair's signed cross term
+// midway between its two slits.
+double manySlitsWdf(double x, double u, double a, double d, int n) {
+  double w = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double cj = (j - 0.5 * (n - 1)) * d;
+    w += rectWdf(x - cj, u, a);
+    for (int k = j + 1; k < n; ++k) {
+      const double ck = (k - 0.5 * (n - 1)) * d;
+      w += 2.0 * std::cos(2.0 * kPi * u * (cj - ck)) * rectWdf(x - 0.5 * (cj + ck), u, a);
+    }
+  }
+  return w;
+}
+
+}  // namespace
+
 TEST(OpeningsWdf, ManySlitsMatchPairwiseDesignFormula) {
   const double a = 1e-6, d = 2.3e-6;
   const int n = 9;
@@ -114,16 +133,7 @@ TEST(OpeningsWdf, ManySlitsMatchPairwiseDesignFormula) {
   std::uniform_real_distribution<double> ux(-0.5 * (n * d + a), 0.5 * (n * d + a)), uu(-3.0 / a, 3.0 / a);
   for (int i = 0; i < 2000; ++i) {
     const double x = ux(rng), u = uu(rng);
-    double want = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const double cj = (j - 0.5 * (n - 1)) * d;
-      want += rectWdf(x - cj, u, a);
-      for (int k = j + 1; k < n; ++k) {
-        const double ck = (k - 0.5 * (n - 1)) * d;
-        want += 2.0 * std::cos(2.0 * kPi * u * (cj - ck)) * rectWdf(x - 0.5 * (cj + ck), u, a);
-      }
-    }
-    EXPECT_NEAR(slits->wdf(x, u), want, 1e-11 * a * n * n) << "x=" << x << " u=" << u;
+    EXPECT_NEAR(slits->wdf(x, u), manySlitsWdf(x, u, a, d, n), 1e-11 * a * n * n) << "x=" << x << " u=" << u;
   }
 }
 
@@ -243,6 +253,69 @@ TEST(OpeningsCellMass, HalfPlaneMatchesBruteForceQuadrature) {
         bruteCellIntegral(halfPlaneWdf, {0.0}, c.x1, c.x2, c.u1, c.u2, 4.0 * c.x2) / (c.x2 - c.x1);
     EXPECT_NEAR(edge->cellMass(c.x1, c.x2, c.u1, c.u2), exact, 1e-6 * 4.0 * c.x2 * (c.u2 - c.u1))
         << "cell x [" << c.x1 << ", " << c.x2 << "] u [" << c.u1 << ", " << c.u2 << "]";
+  }
+}
+
+// Openings::rowMasses, the table's row sweep (sines and cosines by rotation from panel to panel), against
+// cellMass cell by cell (the same panels and nodes by direct evaluation: agreement to rounding, 1e-10 of the
+// row's largest cell) and, on every 23rd cell, against the brute-force quadrature of the closed forms
+// (tolerance as above). Five slits (the pairwise design formula) on rows straddling kinks, between slits and
+// outside, with one panel per cell and with ~9 (long rows: the rotation runs across hundreds of panels and
+// is reseeded), and the half-plane near its edge.
+TEST(OpeningsCellMass, RowMassesMatchCellByCellAndBruteForceQuadrature) {
+  const double a = 1e-5, d = 2.7 * a;
+  const int n = 5;
+  const auto slits = dw::Openings::slits(n, a, d);
+  const auto many = [&](double x, double u) { return manySlitsWdf(x, u, a, d, n); };
+  std::vector<double> kinks;
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k) {
+      const double c = 0.5 * ((j - 0.5 * (n - 1)) * d + (k - 0.5 * (n - 1)) * d);
+      for (double e : {-a / 2, 0.0, a / 2}) kinks.push_back(c + e);
+    }
+  const double span = (n - 1) * d + a;
+  struct Row {
+    double x1, x2, u_first, du;
+    int count;
+  };
+  const double lo = -0.5 * span;
+  const Row rows[] = {
+      {-a / 32, a / 32, -6.0 / a, 0.02 / a, 600},              // straddles x = 0 (a kink), 1 panel per cell
+      {0.5 * d - a / 16, 0.5 * d, -6.0 / a, 0.02 / a, 600},    // between two slits: cross terms only
+      {lo + 0.2 * a, lo + 0.3 * a, -3.0 / a, 0.3 / a, 20},     // the outer slit, ~9 panels per cell
+      {lo - 0.2 * a, lo - 0.1 * a, -1.0 / a, 0.1 / a, 20},     // outside: all 0
+  };
+  for (const Row& r : rows) {
+    SCOPED_TRACE(::testing::Message() << "row x [" << r.x1 << ", " << r.x2 << "] du " << r.du);
+    std::vector<double> got(r.count);
+    slits->rowMasses(r.x1, r.x2, r.u_first, r.du, r.count, got.data());
+    std::vector<double> want(r.count);
+    double largest = 0.0;
+    for (int k = 0; k < r.count; ++k) {
+      const double u1 = r.u_first + k * r.du;
+      want[k] = slits->cellMass(r.x1, r.x2, u1, u1 + r.du);
+      largest = std::max(largest, std::abs(want[k]));
+    }
+    for (int k = 0; k < r.count; ++k) {
+      EXPECT_NEAR(got[k], want[k], 1e-10 * largest) << "cell " << k;
+      if (k % 23 != 0) continue;
+      const double u1 = r.u_first + k * r.du;
+      const double exact = bruteCellIntegral(many, kinks, r.x1, r.x2, u1, u1 + r.du, 2.0 * span) / (r.x2 - r.x1);
+      EXPECT_NEAR(got[k], exact, 1e-6 * 2.0 * a * n * n * r.du) << "cell " << k;
+    }
+  }
+  const double lambda = 1e-6;
+  const auto edge = dw::Openings::halfPlane(20 * lambda);
+  for (const Row& r : {Row{-0.5 * lambda, 0.5 * lambda, -1.0 / lambda, 0.01 / lambda, 200},
+                       Row{3 * lambda, 3.2 * lambda, -0.3 / lambda, 0.05 / lambda, 12}}) {
+    std::vector<double> got(r.count);
+    edge->rowMasses(r.x1, r.x2, r.u_first, r.du, r.count, got.data());
+    for (int k = 0; k < r.count; k += 11) {
+      const double u1 = r.u_first + k * r.du;
+      const double exact =
+          bruteCellIntegral(halfPlaneWdf, {0.0}, r.x1, r.x2, u1, u1 + r.du, 4.0 * std::abs(r.x2)) / (r.x2 - r.x1);
+      EXPECT_NEAR(got[k], exact, 1e-6 * 4.0 * std::abs(r.x2) * r.du) << "half-plane cell " << k;
+    }
   }
 }
 

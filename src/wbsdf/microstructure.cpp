@@ -26,6 +26,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // piece of width Δ is exactly the midpoint value times sinc(2uΔ): this is what cellMass uses.
 // ---------------------------------------------------------------------------------------------------
 
+void Microstructure::rowMasses(double x1, double x2, double u_first, double du, int count, double* out) const {
+  for (int k = 0; k < count; ++k) out[k] = cellMass(x1, x2, u_first + k * du, u_first + k * du + du);
+}
+
 Openings::Openings(std::vector<std::pair<double, double>> intervals_m) : intervals_(std::move(intervals_m)) {
   if (intervals_.empty()) throw core::InputError("openings", "at least one opening is needed");
   std::sort(intervals_.begin(), intervals_.end());
@@ -100,16 +104,10 @@ double Openings::wdf(double x, double u) const {
 }
 
 double Openings::pieceWdf(std::size_t piece, double x, double u) const {
-  const std::size_t n = intervals_.size();
   double w = 0.0;
   for (std::size_t a = active_begin_[piece]; a < active_begin_[piece + 1]; ++a) {
-    const auto& [pj, qj] = intervals_[active_pairs_[a] / n];
-    const auto& [pk, qk] = intervals_[active_pairs_[a] % n];
-    const double s_lo = std::max(2.0 * (pj - x), 2.0 * (x - qk));
-    const double s_hi = std::min(2.0 * (qj - x), 2.0 * (x - pk));
-    const double len = s_hi - s_lo;
+    const auto [len, centre] = pairLag(active_pairs_[a], x);
     if (!(len > 0.0)) continue;  // x on the piece's boundary
-    const double centre = 0.5 * (s_lo + s_hi);
     w += len * std::cos(2.0 * kPi * u * centre) * sinc(u * len);
   }
   return w;
@@ -124,6 +122,15 @@ double Openings::lagBound(double x) const {
   return 2.0 * b;
 }
 
+int Openings::panelsFor(double mid, double width, double du) const {
+  // Oscillation frequency in u is at most the lag bound (plus the sinc from the x-average).
+  const double cycles = du * (lagBound(mid) + 2.0 * width);
+  if (!(cycles < 1e4))
+    throw core::InputError("WBSDF table", "a cell spans more than 10^4 oscillations of W; narrow the u range "
+                                          "(--u-range) or the wavelength-to-size ratio");
+  return 1 + static_cast<int>(cycles);
+}
+
 double Openings::cellMass(double x1, double x2, double u1, double u2) const {
   DIFFRAY_CHECK(x2 > x1 && u2 > u1);
   // Split [x1, x2] at breakpoints so that each piece is smooth (see the comment above); no allocation: this
@@ -135,12 +142,7 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
     if (next != breakpoints_.end() && *next < x2) hi = *next++;
     const double width = hi - lo;
     const double mid = 0.5 * (lo + hi);
-    // Oscillation frequency in u is at most the lag bound (plus the sinc from the x-average).
-    const double cycles = (u2 - u1) * (lagBound(mid) + 2.0 * width);
-    if (!(cycles < 1e4))
-      throw core::InputError("WBSDF table", "a cell spans more than 10^4 oscillations of W; narrow the u range "
-                                            "(--u-range) or the wavelength-to-size ratio");
-    const int panels = 1 + static_cast<int>(cycles);
+    const int panels = panelsFor(mid, width, u2 - u1);
     const auto piece = static_cast<std::size_t>(
         std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
     total += width * core::integrate([&](double u) { return pieceWdf(piece, mid, u) * sinc(2.0 * u * width); },

@@ -91,13 +91,10 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
   std::vector<double> row_total(L.nx);
   tbb::parallel_for(0, L.nx, [&](int j) {
     const double x1 = L.x0_m + j * L.dx_m, x2 = x1 + L.dx_m;
+    double* row = &masses[static_cast<std::size_t>(j) * L.nu];
+    m.rowMasses(x1, x2, L.u0_per_m, L.du_per_m, L.nu, row);
     double sum = 0.0;
-    for (int k = 0; k < L.nu; ++k) {
-      const double u1 = L.u0_per_m + k * L.du_per_m;
-      const double v = m.cellMass(x1, x2, u1, u1 + L.du_per_m);
-      masses[static_cast<std::size_t>(j) * L.nu + k] = v;
-      sum += v;
-    }
+    for (int k = 0; k < L.nu; ++k) sum += row[k];
     // Σ_u W = |t|² (the u-marginal, design.md §1): what the row misses lies outside the u range.
     double t2 = 0.0;
     const int probes = 16;

@@ -3,6 +3,7 @@
 // occluder's local x axis, in metres, with their Wigner distributions W(x,u) in closed form (paper eq. 2,
 // eq:R_WDF; u in cycles per metre). A Microstructure knows how to integrate its own W over a table cell,
 // which is what WbsdfTable stores. Immutable after construction; all methods are thread-safe.
+#include <algorithm>
 #include <complex>
 #include <cstdint>
 #include <memory>
@@ -21,6 +22,10 @@ class Microstructure {
   virtual double wdf(double x_m, double u_per_m) const = 0;
   /// (1/(x2−x1)) ∫_{x1}^{x2} ∫_{u1}^{u2} W(x,u) du dx: the cell value a WbsdfTable stores.
   virtual double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const = 0;
+  /// cellMass of `count` consecutive cells [x1, x2] × [u_first + k·du, u_first + (k+1)·du], k = 0 … count−1,
+  /// into out[k]: a table row. The default calls cellMass per cell; a structure may share work along the row.
+  virtual void rowMasses(double x1_m, double x2_m, double u_first_per_m, double du_per_m, int count,
+                         double* out) const;
 
   /// Where t can be non-zero (or one period, for periodic structures).
   virtual std::pair<double, double> support() const = 0;
@@ -50,6 +55,10 @@ class Openings : public Microstructure {
   std::complex<double> transmittance(double x_m) const override;
   double wdf(double x_m, double u_per_m) const override;
   double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const override;
+  /// The same values as cellMass cell by cell (the same panels and nodes, up to rounding), with the
+  /// cosines and sines of the whole row from one rotation per panel (openings_row.cpp).
+  void rowMasses(double x1_m, double x2_m, double u_first_per_m, double du_per_m, int count,
+                 double* out) const override;
   std::pair<double, double> support() const override;
   bool openBeyondSupport() const override { return half_plane_; }
   double featureSize() const override;
@@ -59,6 +68,22 @@ class Openings : public Microstructure {
  private:
   /// Bound on |s| (the lag) at x: sets the u quadrature density.
   double lagBound(double x_m) const;
+  /// Gauss–Legendre panels cellMass uses on a piece of width `width_m` at `mid_m` for cells du wide;
+  /// throws InputError past 10^4 oscillations per cell.
+  int panelsFor(double mid_m, double width_m, double du_per_m) const;
+  /// The lag interval s ∈ [s_lo, s_hi] of active pair `pair` (j·n + k) at x, as its length (≤ 0: the pair's
+  /// term vanishes there) and centre; the pair's term is len·cos(2πu·centre)·sinc(u·len).
+  struct Lag {
+    double len, centre;
+  };
+  Lag pairLag(std::uint32_t pair, double x) const {
+    const std::size_t n = intervals_.size();
+    const auto& [pj, qj] = intervals_[pair / n];
+    const auto& [pk, qk] = intervals_[pair % n];
+    const double s_lo = std::max(2.0 * (pj - x), 2.0 * (x - qk));
+    const double s_hi = std::min(2.0 * (qj - x), 2.0 * (x - pk));
+    return {s_hi - s_lo, 0.5 * (s_lo + s_hi)};
+  }
   /// W at x from the pairs active in `piece` (see active_pairs_); x must lie in that piece.
   double pieceWdf(std::size_t piece, double x_m, double u_per_m) const;
   std::vector<std::pair<double, double>> intervals_;
