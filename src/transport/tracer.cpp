@@ -94,7 +94,7 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
                TraceResult& acc) {
   ++acc.segments;
   if (object < 0) {
-    tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
+    if (!scene.spheres().empty()) tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
     acc.escaped += s.energy;
     if (const FarField* ff = scene.farField()) {
       const double alpha = dot(s.d, ff->ex);
@@ -108,7 +108,7 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
   const double dn = dot(s.d, obj.frame.n);
   double t = (obj.origin_n - dot(s.o, obj.frame.n)) / dn;
   if (!(std::isfinite(t) && t > 0)) t = t_embree;
-  tallySpheres(scene, s, t, acc);
+  if (!scene.spheres().empty()) tallySpheres(scene, s, t, acc);  // (most scenes have none: no call)
   const double p[3] = {s.o[0] + t * s.d[0], s.o[1] + t * s.d[1], s.o[2] + t * s.d[2]};
   switch (obj.kind) {
     case ObjectKind::Screen: {
