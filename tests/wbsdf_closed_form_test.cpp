@@ -104,8 +104,6 @@ TEST(OpeningsWdf, DoubleSlitMatchesDesignFormulaWithSignedMidAirTerm) {
   EXPECT_NEAR(slits->wdf(0.0, 0.0), 4.0 * a, 1e-12 * a);
 }
 
-// N equal slits (design.md §1 generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
-// c̄_jk the pair's midpoint. Checks the per-piece pruning of pairs (only pairs placed about x contribute).
 namespace {
 
 // n slits of width a, centres (j − (n−1)/2)·d: design.md §1's pairwise sum, each pair's signed cross term
@@ -125,6 +123,8 @@ double manySlitsWdf(double x, double u, double a, double d, int n) {
 
 }  // namespace
 
+// N equal slits (design.md §1 generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
+// c̄_jk the pair's midpoint. Checks the per-piece pruning of pairs (only pairs placed about x contribute).
 TEST(OpeningsWdf, ManySlitsMatchPairwiseDesignFormula) {
   const double a = 1e-6, d = 2.3e-6;
   const int n = 9;
@@ -258,10 +258,12 @@ TEST(OpeningsCellMass, HalfPlaneMatchesBruteForceQuadrature) {
 
 // Openings::rowMasses, the table's row sweep (sines and cosines by rotation from panel to panel), against
 // cellMass cell by cell (the same panels and nodes by direct evaluation: agreement to rounding, 1e-10 of the
-// row's largest cell) and, on every 23rd cell, against the brute-force quadrature of the closed forms
+// row's largest cell; cellMass shares the x pieces and pair lags with it) and, on every 23rd cell, against
+// the brute-force quadrature of the closed forms, which shares nothing
 // (tolerance as above). Five slits (the pairwise design formula) on rows straddling kinks, between slits and
-// outside, with one panel per cell and with ~9 (long rows: the rotation runs across hundreds of panels and
-// is reseeded), and the half-plane near its edge.
+// outside, with one panel per cell (600-cell rows: the rotation runs across hundreds of panels and is
+// reseeded every 16) and with 7 (not a divisor of 16: reseeds fall inside cells), and the half-plane (an
+// infinite opening) near its edge, against both oracles too.
 TEST(OpeningsCellMass, RowMassesMatchCellByCellAndBruteForceQuadrature) {
   const double a = 1e-5, d = 2.7 * a;
   const int n = 5;
@@ -282,7 +284,7 @@ TEST(OpeningsCellMass, RowMassesMatchCellByCellAndBruteForceQuadrature) {
   const Row rows[] = {
       {-a / 32, a / 32, -6.0 / a, 0.02 / a, 600},              // straddles x = 0 (a kink), 1 panel per cell
       {0.5 * d - a / 16, 0.5 * d, -6.0 / a, 0.02 / a, 600},    // between two slits: cross terms only
-      {lo + 0.2 * a, lo + 0.3 * a, -3.0 / a, 0.3 / a, 20},     // the outer slit, ~9 panels per cell
+      {lo + 0.2 * a, lo + 0.3 * a, -3.0 / a, 0.3 / a, 20},     // the outer slit, 7 panels per cell
       {lo - 0.2 * a, lo - 0.1 * a, -1.0 / a, 0.1 / a, 20},     // outside: all 0
   };
   for (const Row& r : rows) {
@@ -308,8 +310,15 @@ TEST(OpeningsCellMass, RowMassesMatchCellByCellAndBruteForceQuadrature) {
   const auto edge = dw::Openings::halfPlane(20 * lambda);
   for (const Row& r : {Row{-0.5 * lambda, 0.5 * lambda, -1.0 / lambda, 0.01 / lambda, 200},
                        Row{3 * lambda, 3.2 * lambda, -0.3 / lambda, 0.05 / lambda, 12}}) {
-    std::vector<double> got(r.count);
+    std::vector<double> got(r.count), want(r.count);
     edge->rowMasses(r.x1, r.x2, r.u_first, r.du, r.count, got.data());
+    double largest = 0.0;
+    for (int k = 0; k < r.count; ++k) {
+      const double u1 = r.u_first + k * r.du;
+      want[k] = edge->cellMass(r.x1, r.x2, u1, u1 + r.du);
+      largest = std::max(largest, std::abs(want[k]));
+    }
+    for (int k = 0; k < r.count; ++k) EXPECT_NEAR(got[k], want[k], 1e-10 * largest) << "half-plane cell " << k;
     for (int k = 0; k < r.count; k += 11) {
       const double u1 = r.u_first + k * r.du;
       const double exact =

@@ -42,7 +42,7 @@ MaterialTable makeMaterials(const room::Room& room) {
 }
 
 Octaves toOctaves(const core::BandArray& a) {
-  Octaves o;
+  Octaves o{};
   for (int b = 0; b < 4; ++b) {
     o.lo[b] = static_cast<float>(a[b]);
     o.hi[b] = static_cast<float>(a[b + 4]);

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
+#if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
@@ -30,6 +31,24 @@ constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.68
 
 // Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
 using Pair = double __attribute__((vector_size(16)));
+// Whether either lane's sign bit is set, and whether some lane of a four-float comparison is true: one
+// movemask each with SSE2, else the lanes one by one (other targets).
+using QuadMask = std::int32_t __attribute__((vector_size(16)));
+inline bool anySignBit(Pair v) {
+#if defined(__SSE2__)
+  return _mm_movemask_pd(v) != 0;
+#else
+  return std::signbit(v[0]) || std::signbit(v[1]);
+#endif
+}
+inline bool anyLane(QuadMask m) {
+#if defined(__SSE2__)
+  return _mm_movemask_ps(reinterpret_cast<__m128>(m)) != 0;
+#else
+  return (m[0] | m[1] | m[2] | m[3]) != 0;
+#endif
+}
+
 // The band energies the bounce loop carries: Octaves for octave bands (NB = 8), else a BandArray.
 template <int NB>
 struct EnergyOf {
@@ -39,13 +58,24 @@ template <>
 struct EnergyOf<8> {
   using type = Octaves;
 };
+// The bounce loop's energies from a Path's (Octaves: relative to `scale`, so that float's range covers any
+// source power), and back.
 template <int NB>
-typename EnergyOf<NB>::type carried(const core::BandArray& e) {
-  if constexpr (NB == 8) return toOctaves(e);
-  else return e;
+typename EnergyOf<NB>::type carried(const core::BandArray& e, double scale) {
+  if constexpr (NB == 8) {
+    core::BandArray relative = e;
+    for (int b = 0; b < 8; ++b) relative[b] /= scale;
+    return toOctaves(relative);
+  } else {
+    return e;
+  }
 }
-const core::BandArray& asBands(const core::BandArray& e) { return e; }
-core::BandArray asBands(const Octaves& e) { return toBands(e); }
+const core::BandArray& asBands(const core::BandArray& e, double) { return e; }
+core::BandArray asBands(const Octaves& e, double scale) {
+  core::BandArray a = toBands(e);
+  for (int b = 0; b < 8; ++b) a[b] *= scale;
+  return a;
+}
 
 struct Tracer {
   const room::Room& room;
@@ -73,9 +103,10 @@ struct Tracer {
   // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
   // listeners whose score next-event estimation took (bit l of `skip_listeners`).
   // NB: the band count when known at compile time (the loops over bands unroll and vectorise), else 0.
+  // `energy` times `scale` is the path's band energies (Octaves hold them relative to the emitted level).
   template <int NB, class Energy>
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
-             const Energy& energy, bool skip, std::uint64_t skip_listeners = 0) const {
+             const Energy& energy, double scale, bool skip, std::uint64_t skip_listeners = 0) const {
     const int nb = NB > 0 ? NB : bands;
     // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
     // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
@@ -94,13 +125,15 @@ struct Tracer {
       const Pair outside = behind > beyond ? behind : beyond;
       return off_line > outside ? off_line : outside;
     };
+    // The least excess per lane (a NaN excess is never taken: it fails the comparison).
+    const Pair one = {1.0, 1.0};
     Pair closest = excessOf(listener_pairs[0]);
+    closest = closest < one ? closest : one;
     for (std::size_t k = 1; k < listener_pairs.size(); ++k) {
       const Pair excess = excessOf(listener_pairs[k]);
       closest = excess < closest ? excess : closest;
     }
-    // No sign bit set: every excess ≥ 0. (A −0 or a NaN with its sign bit set goes on: chordSpan decides.)
-    if (_mm_movemask_pd(closest) == 0) return;
+    if (!anySignBit(closest)) return;  // every excess ≥ 0 (a −0 goes on: chordSpan decides)
     for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
       if (!spheres[l].chordSpan(pos.data(), dir.data(), 0.0, t_end, t_in, t_out)) continue;
@@ -110,7 +143,7 @@ struct Tracer {
       const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
       if (bin < 0) continue;
       // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
-      const double w = spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
+      const double w = scale * spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
       // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
       // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
       // error below 2e-8, no exp per band in the hot loop.
@@ -158,7 +191,7 @@ struct Tracer {
   // The energy the ray holds over the segment [path_m, path_m + length), spread over the time bins it
   // spans (air absorption at the segment's start: the pilot needs the decay, not a precise level).
   template <class Energy>
-  void addInFlight(RoomTraceResult& acc, double path_m, double length, const Energy& energy) const {
+  void addInFlight(RoomTraceResult& acc, double path_m, double length, const Energy& energy, double scale) const {
     receiver::EnergyHistogram& h = acc.in_flight;
     const double c = opt.speed_of_sound_m_s;
     const double t_start = path_m / c, t_stop = std::min((path_m + length) / c, h.lengthSeconds());
@@ -168,7 +201,7 @@ struct Tracer {
     for (double t0 = t_start; bin < h.bins() && t0 < t_stop; ++bin) {
       const double edge = std::min(t_stop, (bin + 1) * h.binSeconds());
       if (edge > t0)
-        for (int b = 0; b < bands; ++b) h.add(b, bin, energy[b] * std::exp(-opt.air_m_per_m[b] * path_m) * (edge - t0));
+        for (int b = 0; b < bands; ++b) h.add(b, bin, scale * energy[b] * std::exp(-opt.air_m_per_m[b] * path_m) * (edge - t0));
       t0 = std::max(t0, edge);
     }
   }
@@ -330,20 +363,23 @@ struct Tracer {
   template <int NB>
   void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
     Vec3 pos = s.pos, dir = s.dir;
-    typename EnergyOf<NB>::type e = carried<NB>(s.e);
+    // Octaves carry the energies relative to the emitted level (scores multiply it back).
+    const double scale = NB == 8 && s.e_start > 0.0 && std::isfinite(s.e_start) ? s.e_start : 1.0;
+    typename EnergyOf<NB>::type e = carried<NB>(s.e, scale);
     double path_m = s.path_m;
     int order = s.order;
     bool specular_chain = s.specular_chain;
     std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    // Options read once (opt is a reference: each use would be two loads). Roulette's threshold also as
-    // four floats rounded up, so that a band at or above them is at or above the threshold.
+    // Options read once (opt is a reference: each use would be two loads). Roulette's threshold (on the
+    // Path's energies, and relative to `scale` on e), the latter also as four floats rounded up, so that a
+    // band at or above them is at or above it.
     const bool in_flight = opt.in_flight;
     const int skip_order = opt.skip_order;
-    const double threshold = opt.roulette_level * s.e_start;
-    float threshold_f = static_cast<float>(threshold);
-    if (threshold_f < threshold) threshold_f = std::nextafter(threshold_f, HUGE_VALF);
+    const double threshold = opt.roulette_level * s.e_start, threshold_e = threshold / scale;
+    float threshold_f = static_cast<float>(threshold_e);
+    if (threshold_f < threshold_e) threshold_f = std::nextafter(threshold_f, HUGE_VALF);
     const Quad threshold4 = {threshold_f, threshold_f, threshold_f, threshold_f};
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
@@ -375,9 +411,9 @@ struct Tracer {
       }
       const double remaining = max_path_m - path_m;
       const double t_end = std::min(t_hit, remaining);
-      score<NB>(acc, pos, dir, t_end, path_m, e, specular_chain && order <= skip_order, skip_next);
+      score<NB>(acc, pos, dir, t_end, path_m, e, scale, specular_chain && order <= skip_order, skip_next);
       skip_next = 0;
-      if (in_flight) addInFlight(acc, path_m, t_end, e);
+      if (in_flight) addInFlight(acc, path_m, t_end, e, scale);
       if (!hit.valid()) {
         ++acc.escaped;
         return;
@@ -404,12 +440,12 @@ struct Tracer {
         if (opt.occluders && s.diffractions < opt.max_diffractions) {
           if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
             // The occluder code works on the Path.
-            s.e = asBands(e);
+            s.e = asBands(e, scale);
             s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
             if (s.band < 0) chooseBand(rng, s);
             if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
             if (!roulette<0>(acc, rng, s.e, threshold)) return;
-            e = carried<NB>(s.e);
+            e = carried<NB>(s.e, scale);
             pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
             skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
             continue;
@@ -443,7 +479,7 @@ struct Tracer {
         specular_chain = false;
         pos -= (side * eps_m) * tri.normal;
       }
-      if (!roulette<NB>(acc, rng, e, threshold, threshold4)) return;
+      if (!roulette<NB>(acc, rng, e, threshold_e, threshold4)) return;
     }
   }
 
@@ -459,7 +495,7 @@ struct Tracer {
     if constexpr (NB == 8) {
       const Quad m = maxAbs(e);
       // The common case, some band at or above the threshold (rounded up to a float), in one compare.
-      if (_mm_movemask_ps(reinterpret_cast<__m128>(m >= threshold4))) return true;
+      if (anyLane(m >= threshold4)) return true;
       level = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
     } else {
       for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));

@@ -136,19 +136,11 @@ double Openings::cellMass(double x1, double x2, double u1, double u2) const {
   // Split [x1, x2] at breakpoints so that each piece is smooth (see the comment above); no allocation: this
   // runs once per table cell.
   double total = 0.0;
-  auto next = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1);
-  for (double lo = x1; lo < x2;) {
-    double hi = x2;
-    if (next != breakpoints_.end() && *next < x2) hi = *next++;
-    const double width = hi - lo;
-    const double mid = 0.5 * (lo + hi);
+  forEachPiece(x1, x2, [&](double width, double mid, std::size_t piece) {
     const int panels = panelsFor(mid, width, u2 - u1);
-    const auto piece = static_cast<std::size_t>(
-        std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
     total += width * core::integrate([&](double u) { return pieceWdf(piece, mid, u) * sinc(2.0 * u * width); },
-                                     u1, u2, panels, 6);
-    lo = hi;
-  }
+                                     u1, u2, panels, kCellNodes);
+  });
   return total / (x2 - x1);
 }
 

@@ -20,50 +20,54 @@
 namespace diffray::wbsdf {
 
 namespace {
-constexpr int kOrder = 6;     // Gauss–Legendre nodes per panel, as cellMass
 constexpr long kReseed = 16;  // panels between exact evaluations of the rotation's state
 }  // namespace
 
 void Openings::rowMasses(double x1, double x2, double u_first, double du, int count, double* out) const {
   DIFFRAY_CHECK(x2 > x1 && du > 0.0 && count >= 0);
   std::fill(out, out + count, 0.0);
-  const core::GaussLegendre& gl = core::gaussLegendre(kOrder);
-  std::vector<double> b, step_c, step_s, node_c, node_s, s, c;
-  auto next = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1);
-  for (double lo = x1; lo < x2;) {
-    double hi = x2;
-    if (next != breakpoints_.end() && *next < x2) hi = *next++;
-    const double width = hi - lo, mid = 0.5 * (lo + hi);
-    lo = hi;
+  if (count == 0) return;
+  constexpr int kNodes = kCellNodes;
+  const core::GaussLegendre& gl = core::gaussLegendre(kNodes);
+  const double scale = 1.0 / (x2 - x1);
+  std::vector<std::pair<double, double>> terms;  // (|b|, ±1) of each sine of S
+  std::vector<double> b, weight, step_c, step_s, node_c, node_s, s, c;
+  forEachPiece(x1, x2, [&](double width, double mid, std::size_t piece) {
     const int panels = panelsFor(mid, width, du);
-    const auto piece = static_cast<std::size_t>(
-        std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
-    // The frequencies b_q of S (as pieceWdf's pairs), then 2Δ for the x-average's sine (the last one).
-    b.clear();
+    // S's sines, sin(πu·b) = sign(b)·sin(πu·|b|): the ordered pairs (j, k) and (k, j) give the same two
+    // frequencies, so equal |b| are merged into one frequency with the sum of their signs as its weight.
+    terms.clear();
     double sum_len = 0.0;
     for (std::size_t a = active_begin_[piece]; a < active_begin_[piece + 1]; ++a) {
       const auto [len, centre] = pairLag(active_pairs_[a], mid);
       if (!(len > 0.0)) continue;
-      b.push_back(len + 2.0 * centre);
-      b.push_back(len - 2.0 * centre);
       sum_len += len;
+      for (const double f : {len + 2.0 * centre, len - 2.0 * centre})
+        if (f != 0.0) terms.emplace_back(std::abs(f), f > 0.0 ? 1.0 : -1.0);
     }
-    if (b.empty()) continue;  // no pair reaches this piece: W = 0
-    const std::size_t nq = b.size();  // sines summed into S
+    if (!(sum_len > 0.0)) return;  // no pair reaches this piece: W = 0
+    std::sort(terms.begin(), terms.end());
+    b.clear();
+    weight.clear();
+    for (const auto& [f, sign] : terms) {
+      if (!b.empty() && b.back() == f) weight.back() += sign;
+      else b.push_back(f), weight.push_back(sign);
+    }
+    const std::size_t nq = b.size();  // S's frequencies; then 2Δ for the x-average's sine (the last one)
     b.push_back(2.0 * width);
+    weight.push_back(1.0);
     const std::size_t nb = b.size();
     const double h = du / panels, half = 0.5 * h;
     step_c.resize(nb), step_s.resize(nb), s.resize(nb), c.resize(nb);
-    node_c.resize(nb * kOrder), node_s.resize(nb * kOrder);
+    node_c.resize(nb * kNodes), node_s.resize(nb * kNodes);
     for (std::size_t q = 0; q < nb; ++q) {
       step_c[q] = std::cos(core::kPi * b[q] * h);
       step_s[q] = std::sin(core::kPi * b[q] * h);
-      for (int i = 0; i < kOrder; ++i) {
-        node_c[i * nb + q] = std::cos(core::kPi * b[q] * half * gl.nodes[i]);
-        node_s[i * nb + q] = std::sin(core::kPi * b[q] * half * gl.nodes[i]);
+      for (int i = 0; i < kNodes; ++i) {  // node offsets, weights folded in
+        node_c[q * kNodes + i] = weight[q] * std::cos(core::kPi * b[q] * half * gl.nodes[i]);
+        node_s[q * kNodes + i] = weight[q] * std::sin(core::kPi * b[q] * half * gl.nodes[i]);
       }
     }
-    const double scale = 1.0 / (x2 - x1);
     for (int k = 0; k < count; ++k) {
       double cell = 0.0;
       for (int p = 0; p < panels; ++p) {
@@ -74,15 +78,18 @@ void Openings::rowMasses(double x1, double x2, double u_first, double du, int co
             c[q] = std::cos(core::kPi * b[q] * centre);
           }
         }
+        // S at the panel's nodes: one accumulator per node (independent chains, in q order).
+        double S[kNodes] = {};
+        for (std::size_t q = 0; q < nq; ++q) {
+          const double* nc = &node_c[q * kNodes];
+          const double* ns = &node_s[q * kNodes];
+          for (int i = 0; i < kNodes; ++i) S[i] += s[q] * nc[i] + c[q] * ns[i];
+        }
         double sum = 0.0;
-        for (int i = 0; i < kOrder; ++i) {
-          const double* nc = &node_c[i * nb];
-          const double* ns = &node_s[i * nb];
-          double S = 0.0;
-          for (std::size_t q = 0; q < nq; ++q) S += s[q] * nc[q] + c[q] * ns[q];
-          const double sine = s[nq] * nc[nq] + c[nq] * ns[nq];  // sin(2πuΔ)
+        for (int i = 0; i < kNodes; ++i) {
+          const double sine = s[nq] * node_c[nq * kNodes + i] + c[nq] * node_s[nq * kNodes + i];  // sin(2πuΔ)
           const double u = centre + half * gl.nodes[i];
-          const double f = u != 0.0 ? S * sine / (4.0 * core::kPi * core::kPi * u * u) : width * sum_len;
+          const double f = u != 0.0 ? S[i] * sine / (4.0 * core::kPi * core::kPi * u * u) : width * sum_len;
           sum += gl.weights[i] * f;
         }
         cell += half * sum;
@@ -94,7 +101,7 @@ void Openings::rowMasses(double x1, double x2, double u_first, double du, int co
       }
       out[k] += cell * scale;
     }
-  }
+  });
 }
 
 }  // namespace diffray::wbsdf

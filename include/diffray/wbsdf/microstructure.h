@@ -55,8 +55,10 @@ class Openings : public Microstructure {
   std::complex<double> transmittance(double x_m) const override;
   double wdf(double x_m, double u_per_m) const override;
   double cellMass(double x1_m, double x2_m, double u1_per_m, double u2_per_m) const override;
-  /// The same values as cellMass cell by cell (the same panels and nodes, up to rounding), with the
-  /// cosines and sines of the whole row from one rotation per panel (openings_row.cpp).
+  /// cellMass's quadrature cell by cell, with the cosines and sines of the whole row from one rotation per
+  /// panel (openings_row.cpp). The panel count comes from du; cellMass takes u2 − u1, which can round to
+  /// one panel more or fewer when the count sits on an integer (a quadrature difference of ~1e-7 of the
+  /// cell's bound at worst, far below what the table needs).
   void rowMasses(double x1_m, double x2_m, double u_first_per_m, double du_per_m, int count,
                  double* out) const override;
   std::pair<double, double> support() const override;
@@ -71,6 +73,22 @@ class Openings : public Microstructure {
   /// Gauss–Legendre panels cellMass uses on a piece of width `width_m` at `mid_m` for cells du wide;
   /// throws InputError past 10^4 oscillations per cell.
   int panelsFor(double mid_m, double width_m, double du_per_m) const;
+  static constexpr int kCellNodes = 6;  ///< Gauss–Legendre nodes per panel of a cell's u quadrature
+  /// Calls f(width, mid, piece) for each piece of [x1, x2] between breakpoints (W is smooth on each; see
+  /// microstructure.cpp), in order of x, with `piece` its index for pieceWdf and active_pairs_.
+  template <class F>
+  void forEachPiece(double x1_m, double x2_m, F&& f) const {
+    auto next = std::upper_bound(breakpoints_.begin(), breakpoints_.end(), x1_m);
+    for (double lo = x1_m; lo < x2_m;) {
+      double hi = x2_m;
+      if (next != breakpoints_.end() && *next < x2_m) hi = *next++;
+      const double mid = 0.5 * (lo + hi);
+      const auto piece = static_cast<std::size_t>(
+          std::upper_bound(breakpoints_.begin(), breakpoints_.end(), mid) - breakpoints_.begin());
+      f(hi - lo, mid, piece);
+      lo = hi;
+    }
+  }
   /// The lag interval s ∈ [s_lo, s_hi] of active pair `pair` (j·n + k) at x, as its length (≤ 0: the pair's
   /// term vanishes there) and centre; the pair's term is len·cos(2πu·centre)·sinc(u·len).
   struct Lag {
