@@ -187,6 +187,32 @@ if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1
 
 # diffray compare: bad input gives one line and leaves no CSV or PNG behind.
 rooms="$(cd "$(dirname "$0")/../rooms" && pwd)"
+
+# No output may replace any file a run reads: the material library (ir's sidecar of -o materials.wav), the
+# scene (compare --csv), a profile (wdf --csv). One line, non-zero exit, the input untouched.
+mkdir -p "$tmp/lib"
+cp "$rooms/shoebox.json" "$rooms/materials.json" "$rooms/barrier.json" "$tmp/lib/"
+printf 'x,amplitude,phase\n-1e-4,1,0\n1e-4,1,0\n' >"$tmp/lib/p.csv"
+cp -r "$tmp/lib" "$tmp/lib.keep"
+expect_input_kept() {  # expect_input_kept DESCRIPTION KEPT_FILE ARGS...
+  local what="$1" kept="$2"; shift 2
+  (cd "$tmp/lib" && "$bin" "$@" >/dev/null 2>"$tmp/stderr")
+  local code=$?
+  if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "would overwrite" "$tmp/stderr" &&
+     cmp -s "$tmp/lib/$kept" "$tmp/lib.keep/$kept"; then passes=$((passes + 1)); else
+    echo "FAIL: $what (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+}
+expect_input_kept "ir: -o materials.wav would replace the library" materials.json ir shoebox.json -o materials.wav --rays 2000
+expect_input_kept "compare: --csv onto the scene"                  barrier.json compare barrier.json --models utd --csv barrier.json
+expect_input_kept "wdf: --csv onto the profile"                    p.csv wdf profile --profile p.csv --csv p.csv
+
+# Names written into gnuplot scripts cannot run commands: a plot path with a newline is refused before any
+# work (its message on one line), and a title with one is drawn as text (no file appears from the injected
+# system()).
+expect_clean "plot path with a newline" "pwned*" "" validate slit-fraunhofer --rays 2000 \
+  --plot "$tmp/p\"
+system(\"touch $tmp/pwned1\")
+set title \"q.png"
 expect_compare_error() {  # expect_compare_error DESCRIPTION PATTERN ARGS...: the line must contain PATTERN
   local what="$1" pattern="$2"; shift 2
   expect_clean "compare: $what" "cmp.*" "$pattern" compare "$@"
@@ -340,6 +366,14 @@ expect_spectrogram_error "zero dB range"         "$tmp/ok.wav" -o "$tmp/spec.png
 expect_spectrogram_error "no -o"                 "$tmp/ok.wav"
 expect_spectrogram_error "mark without a time"  "$tmp/ok.wav" -o "$tmp/spec.png" --mark :START
 expect_spectrogram_error "non-numeric mark"      "$tmp/ok.wav" -o "$tmp/spec.png" --mark soon:END
+# A title with a newline and a gnuplot command after it: drawn as text, the command not run.
+if command -v gnuplot >/dev/null 2>&1; then
+  "$bin" spectrogram "$tmp/ok.wav" -o "$tmp/t.png" --title "a'
+system('touch $tmp/pwned2')
+set title 'b" >/dev/null 2>&1
+  if [ -f "$tmp/t.png" ] && [ ! -e "$tmp/pwned2" ]; then passes=$((passes + 1)); else
+    echo "FAIL: spectrogram: a --title with a newline ran a gnuplot command"; fails=$((fails + 1)); fi
+fi
 # The good path (with gnuplot): a PNG, and nothing else left beside it.
 if command -v gnuplot >/dev/null 2>&1; then
   python3 - "$tmp/sweep.wav" <<'PY'
@@ -532,6 +566,20 @@ if [ "$(head -c 8 "$tmp/good.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "8
 
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
+
+# Results that cannot be written to stdout (a full disk) are an error, not a silent success.
+if [ -w /dev/full ]; then
+  "$bin" validate slit-fraunhofer --rays 2000 --json >/dev/full 2>"$tmp/stderr"
+  code=$?
+  if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ]; then passes=$((passes + 1)); else
+    echo "FAIL: --json to a full stdout exited $code"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+fi
+# A file name that is not UTF-8 (legal on Linux) is reported in JSON, not an internal error after the work.
+cp "$tmp/lib/shoebox.json" "$tmp/lib/$(printf 'b\377d.json')"
+(cd "$tmp/lib" && "$bin" ir "$(printf 'b\377d.json')" -o "$(printf 'o\377.wav')" --rays 2000 --json >/dev/null 2>"$tmp/stderr")
+code=$?
+if [ "$code" -eq 0 ] && [ -s "$tmp/lib/$(printf 'o\377.json')" ]; then passes=$((passes + 1)); else
+  echo "FAIL: ir with a non-UTF-8 file name exited $code"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
 # The good path writes the CSV completely (header + one row per bin).
 "$bin" validate slit-fraunhofer --rays 20000 --bins 11 --csv "$tmp/good.csv" >/dev/null 2>&1

@@ -178,7 +178,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     core::ThreadLimit limit(common.threads);
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(o->scene, &warnings);
-    checkOutputFiles({o->csv, o->plot});
+    checkOutputFiles({o->csv, o->plot}, room.input_files);
     compare::checkListeners(room);  // before the loader's warnings: a refused listener gives one line
     checkPlotOption("--plot", o->plot);
     // Comparison scenes are usually open (a barrier on the ground, a wall in free field): the room checks'
@@ -216,7 +216,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
         if (r.band) j["band_hz"] = r.band_label;
         if (r.model == "wbsdf") j["std_error_db"] = std::isfinite(r.std_error_db) ? nlohmann::ordered_json(r.std_error_db) : nlohmann::ordered_json();
         if (c.shadow_angle_deg[r.listener]) j["angle_past_shadow_boundary_deg"] = *c.shadow_angle_deg[r.listener];
-        std::cout << j.dump() << '\n';
+        std::cout << jsonText(j) << '\n';
       }
       std::cout.flush();
     } else {

@@ -67,15 +67,12 @@ void parseClose(const std::string& text, double& start_s, double& end_s) {
   if (!ok) throw core::InputError("--close", "must be START:END in seconds (e.g. 1.5:3), got \"" + text + "\"");
 }
 
-void checkOutputs(const DoorOptions& o, const std::string& png) {
-  namespace fs = std::filesystem;
+// `inputs`: every file the room was read from (Room::input_files); the dry signal is added.
+void checkOutputs(const DoorOptions& o, const std::string& png, std::vector<std::string> inputs) {
   checkOutputFile(o.out, ".wav");
   checkOutputFile(png, ".png");
-  checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png});
-  std::error_code ec;
-  for (const std::string& p : {o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png})
-    for (const std::string& input : {o.in, o.room_file})
-      if (fs::equivalent(p, input, ec)) throw core::InputError(p, "would overwrite the input " + input + "; give -o another name");
+  inputs.push_back(o.in);
+  checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png}, inputs);
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw core::InputError("--spectrogram", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
 }
@@ -161,7 +158,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       if (opts->listener.empty() || room.listeners[l].name == opts->listener) chosen.push_back(l);
     if (chosen.empty()) throw core::InputError("--listener", "the room has no listener named \"" + opts->listener + "\"");
     const std::string png = opts->spectrogram.empty() ? withExtension(opts->out, ".png") : opts->spectrogram;
-    checkOutputs(*opts, png);
+    checkOutputs(*opts, png, room.input_files);
     {  // One pass through the dry signal before the (long) tracing: a NaN in it is an error now, not later.
       audio::AudioReader scan(opts->in);
       std::vector<float> buffer(static_cast<std::size_t>(kBlock) * scan.channels());
@@ -287,11 +284,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     });
     side["timing_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
-      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
     });
     written.commit();
     if (common.json) {
-      std::cout << side.dump(2) << std::endl;
+      std::cout << jsonText(side, 2) << std::endl;
       return 0;
     }
     std::printf("%s: door %s closes %.2f-%.2f s in %zu steps (%s), %llu rays per step -> %s (+ .png, .json, .csv)\n",

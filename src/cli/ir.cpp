@@ -102,16 +102,11 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                                 ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
                                 : opts->out;
     checkOutputFile(wav, ".wav");
-    checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot});
+    // No output may replace a file the room was read from: the sidecar is OUT.json, so run in the room
+    // file's folder with the default output it would replace the room file itself (`cd rooms && diffray ir
+    // shoebox.json` once destroyed shoebox.json), and `-o materials.wav` the material library.
+    checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot}, room.input_files);
     checkPlotOption("--plot", opts->plot);
-    // The sidecar is OUT.json: run in the room file's folder with the default output, it would replace the
-    // room file itself (`cd rooms && diffray ir shoebox.json` destroyed shoebox.json).
-    for (const char* ext : {".wav", ".json", ".csv"}) {
-      std::error_code ec;
-      const std::string out = withExtension(wav, ext);
-      if (std::filesystem::equivalent(out, opts->room_file, ec))
-        throw core::InputError(out, "would overwrite the room file " + opts->room_file + "; give -o another name");
-    }
     checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
 
@@ -219,11 +214,11 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(wav, ".csv"), [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     written.write(withExtension(wav, ".json"), [&](const std::string& f) {
-      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << '\n'; });
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
     });
     written.commit();
     if (common.json) {
-      std::cout << side.dump(2) << std::endl;
+      std::cout << jsonText(side, 2) << std::endl;
     } else {
       std::printf("%s: %llu rays, %zu image sources, %.2f s IR, traced in %.2f s -> %s (+ .json, .csv)\n",
                   room.name.c_str(), static_cast<unsigned long long>(sim.rays), sim.image_sources, sim.length_s,

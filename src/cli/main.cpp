@@ -1,10 +1,41 @@
 // The `diffray` program: parses the command line with CLI11 and dispatches to a subcommand. Any error in
 // the user's input ends the program with one line on stderr and exit code 2; no output file is left
 // half-written (outputs are written atomically).
+#include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "diffray/cli/commands.h"
 #include "diffray/core/error.h"
+
+namespace {
+
+// The message on one line: a control character (a newline in a file name, an escape from a file's bytes)
+// is written as \n, \t or \xNN.
+std::string oneLine(const char* message) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (const char* p = message; *p; ++p) {
+    const unsigned char c = static_cast<unsigned char>(*p);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    else out += static_cast<char>(c);
+  }
+  return out;
+}
+
+// Runs a subcommand; a result it could not write to stdout (a full disk, a closed pipe) is an error too.
+int finish(int code) {
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    std::cerr << "diffray: error: cannot write the results to standard output\n";
+    return code != 0 ? code : 2;
+  }
+  return code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"diffray: ray tracing that hears and sees diffraction, with the Wave BSDF (WBSDF)"};
@@ -30,26 +61,26 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "diffray: error: " << e.what() << " (see diffray --help)\n";
+    std::cerr << "diffray: error: " << oneLine(e.what()) << " (see diffray --help)\n";
     return 2;
   }
   try {
-    if (app.got_subcommand("ir")) return ir();
-    if (app.got_subcommand("validate")) return validate();
-    if (app.got_subcommand("wdf")) return wdf();
-    if (app.got_subcommand("metrics")) return metrics();
-    if (app.got_subcommand("compare")) return compare();
-    if (app.got_subcommand("auralize")) return auralize();
-    if (app.got_subcommand("door")) return door();
-    if (app.got_subcommand("spectrogram")) return spectrogram();
-    if (app.got_subcommand("signal")) return dry_signal();
-    if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("ir")) return finish(ir());
+    if (app.got_subcommand("validate")) return finish(validate());
+    if (app.got_subcommand("wdf")) return finish(wdf());
+    if (app.got_subcommand("metrics")) return finish(metrics());
+    if (app.got_subcommand("compare")) return finish(compare());
+    if (app.got_subcommand("auralize")) return finish(auralize());
+    if (app.got_subcommand("door")) return finish(door());
+    if (app.got_subcommand("spectrogram")) return finish(spectrogram());
+    if (app.got_subcommand("signal")) return finish(dry_signal());
+    if (app.got_subcommand("render")) return finish(render());
     return 2;
   } catch (const diffray::core::InputError& e) {
-    std::cerr << "diffray: error: " << e.what() << "\n";
+    std::cerr << "diffray: error: " << oneLine(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "diffray: internal error (please report): " << e.what() << "\n";
+    std::cerr << "diffray: internal error (please report): " << oneLine(e.what()) << "\n";
     return 3;
   }
 }

@@ -97,7 +97,7 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
                        {"channels", audio.channels},
                        {"channel", o->channel},
                        {"bands", ir::metricsJson(bands, metrics)}};
-      std::cout << j.dump() << std::endl;
+      std::cout << jsonText(j) << std::endl;
     } else {
       std::cout << o->file << ": " << audio.frames() << " frames at " << audio.sample_rate_hz << " Hz, channel "
                 << o->channel << " of " << audio.channels << "\n"

@@ -29,16 +29,31 @@ std::vector<const validate::Row*> plottedRows(const validate::CaseResult& r) {
   return out;
 }
 
+// A gnuplot single-quoted string ('' for a quote). A control character would end gnuplot's command there
+// (a newline) and let the rest run as commands of its own: each becomes a space.
 std::string quoted(const std::string& s) {
   std::string q = "'";
-  for (char c : s) q += (c == '\'') ? std::string("''") : std::string(1, c);
+  for (char c : s) {
+    if (c == '\'') q += "''";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) q += ' ';
+    else q += c;
+  }
   return q + "'";
+}
+
+// Plot files are named in the gnuplot script: a name with a control character cannot be written as given.
+void refuseControlCharacters(const std::string& option, const std::string& path) {
+  for (char c : path)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw core::InputError(option, "the plot's file name contains a control character (a newline, a tab…): "
+                                     "choose a plain name");
 }
 
 }  // namespace
 
 void runGnuplot(const std::string& option, const std::string& png_path,
                 const std::function<std::string(const std::string&, const std::string&)>& script_for) {
+  refuseControlCharacters(option, png_path);
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw core::InputError(option, "needs gnuplot (Debian: apt-get install gnuplot-nox)");
   const fs::path dir = fs::temp_directory_path() / ("diffray-plot-" + std::to_string(::getpid()));
@@ -68,6 +83,7 @@ std::string gnuplotQuoted(const std::string& s) { return quoted(s); }
 
 void checkPlotOption(const std::string& option, const std::string& path) {
   if (path.empty()) return;
+  refuseControlCharacters(option, path);
   if (fs::path(path).extension() != ".png")
     throw core::InputError(option, path + ": the plot is a PNG image: give a file name ending in .png");
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)

@@ -117,10 +117,10 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                           {"escaped", r.escaped / p},
                           {"bounce_limit", r.bounce_limit / p}}}};
     written.write(withExtension(o->out, ".json"), [&](const std::string& f) {
-      core::writeFileAtomically(f, [&](std::ostream& out) { out << side.dump(2) << "\n"; });
+      core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << "\n"; });
     });
     written.commit();
-    std::cout << side.dump() << std::endl;
+    std::cout << jsonText(side) << std::endl;
     return 0;
   };
 }

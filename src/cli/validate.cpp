@@ -179,7 +179,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       results.push_back(c->run(params[i], ro));
       progress.finish();
       all_passed = all_passed && results.back().passed;
-      if (common.json) std::cout << toJson(results.back()).dump() << std::endl;
+      if (common.json) std::cout << jsonText(toJson(results.back())) << std::endl;
     }
     OutputFiles written;  // replaced together: a later failure leaves the previous files
     if (!opts->plot.empty())  // first: the likelier to fail

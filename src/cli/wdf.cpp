@@ -109,6 +109,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
   sub->add_flag("--json", common.json, "print a JSON object instead of text");
   return [o, &common]() {
     core::ThreadLimit limit(common.threads);
+    if (!o->csv.empty()) checkOutputFiles({o->csv}, {o->profile});  // before the work; never the profile
     const auto table = makeTable(*o);
     const auto& L = table->layout();
     double max_row = 0.0;
@@ -134,7 +135,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
                 << table->mass(r, k) / L.du_per_m << '\n';
       });
     if (common.json) {
-      std::cout << j.dump() << std::endl;
+      std::cout << jsonText(j) << std::endl;
     } else {
       for (auto it = j.begin(); it != j.end(); ++it) std::cout << std::setw(18) << it.key() << "  " << it.value() << "\n";
     }

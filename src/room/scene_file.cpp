@@ -135,6 +135,7 @@ struct SceneParser {
     const std::string path = joinPath(base_dir, file_field.string());
     requireInputFile(file_field, path, "the OBJ file");
     const ObjModel model = loadObj(path);
+    room.input_files.push_back(path);
     if (model.faces.empty()) file_field.fail(path + " has no faces");
     std::map<std::string, int> group_index;
     std::string group_list;
@@ -334,12 +335,14 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
     else if (b == "third-octave") room.bands = core::Bands::thirdOctave();
     else top["bands"].fail("must be \"octave\" or \"third-octave\", got " + inQuotes(b));
   }
+  if (!file.empty()) room.input_files.push_back(file);
   SceneParser p{file, base_dir, room, local_warnings, {}, {}, {}};
   if (top.has("materials_library")) {
     const JsonField lib = top["materials_library"];
     p.library_file = joinPath(base_dir, lib.string());
     requireInputFile(lib, p.library_file, "the material library");
     p.library = loadMaterialLibrary(p.library_file, room.bands);
+    room.input_files.push_back(p.library_file);
   }
   if (top.has("materials")) p.materials(top["materials"]);
   p.geometry(top["geometry"]);

@@ -97,7 +97,12 @@ void scoreRows(CaseResult& r) {
       r.extra["rms_error_rel_peak[" + label + "]"] = rms;
     }
   }
-  r.passed = r.max_abs_error_rel_peak <= r.target_rel_peak;
+  // A pattern whose reference is zero everywhere measures nothing (a slit far below the wavelength: both
+  // patterns underflow to 0): the case cannot pass on it.
+  int unmeasured = 0;
+  for (const auto& [label, pk] : peak) unmeasured += !(pk > 0.0 && std::isfinite(pk));
+  if (unmeasured > 0) r.extra["patterns_with_zero_reference"] = unmeasured;
+  r.passed = unmeasured == 0 && !peak.empty() && r.max_abs_error_rel_peak <= r.target_rel_peak;
 }
 
 }  // namespace diffray::validate

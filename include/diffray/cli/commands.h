@@ -4,6 +4,7 @@
 // are thrown as core::InputError and printed by main() as one line.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -70,5 +71,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common);
 Runner addSpectrogramCommand(CLI::App& app, CommonOptions& common);
 Runner addSignalCommand(CLI::App& app, CommonOptions& common);
 Runner addRenderCommand(CLI::App& app, CommonOptions& common);
+
+/// JSON text for stdout and sidecars. File names may hold any bytes: a string that is not UTF-8 gets U+FFFD
+/// where it breaks, instead of an exception after the work is done.
+inline std::string jsonText(const nlohmann::json& j, int indent = -1) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 }  // namespace diffray::cli

@@ -70,6 +70,9 @@ struct Output {
 struct Room {
   std::string name;
   std::string file;  ///< where it was loaded from (empty when built in code)
+  /// Every file read to build it: the scene file, its material library, its OBJ meshes (outputs must not
+  /// replace any of them).
+  std::vector<std::string> input_files;
   core::Bands bands = core::Bands::octave();
   std::vector<Material> materials;
   /// Triangles; mesh.object_of_triangle[i] is the index of triangle i's material in `materials`.
