@@ -567,6 +567,20 @@ if [ "$(head -c 8 "$tmp/good.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "8
 expect_error "no subcommand"
 expect_error "unknown subcommand"     frobnicate
 
+# Values no range check catches: NaN for ir's length, a room volume of 1e-300 m³ (it hung), a WAV whose
+# header claims a 1 GHz sample rate (4 kB that took 3 GB before failing).
+expect_clean "ir --length nan" "nanlen.*" "--length" ir "$tmp/lib/shoebox.json" -o "$tmp/nanlen.wav" --length nan --rays 1000
+expect_error "decay-metrics --volume 1e-300" validate decay-metrics --volume 1e-300 "$csv"
+python3 - "$tmp/rate.wav" <<'PY'
+import struct, sys
+n, sr = 1000, 1000000000
+data = struct.pack('<%df' % n, *([0.0] * n))
+fmt = struct.pack('<IHHIIHH', 16, 3, 1, sr, sr * 4, 4, 32)
+open(sys.argv[1], 'wb').write(b'RIFF' + struct.pack('<I', 36 + len(data)) + b'WAVE' + b'fmt ' + fmt + b'data' +
+                              struct.pack('<I', len(data)) + data)
+PY
+expect_clean "metrics: a 1 GHz sample rate" "rate.json" "sample rate" metrics "$tmp/rate.wav"
+
 # Results that cannot be written to stdout (a full disk) are an error, not a silent success.
 if [ -w /dev/full ]; then
   "$bin" validate slit-fraunhofer --rays 2000 --json >/dev/full 2>"$tmp/stderr"

@@ -19,6 +19,14 @@ namespace {
 
 // More samples than this is a mistake (a 2^30-sample file is 8 GiB of doubles), not an impulse response.
 constexpr double kMaxSamples = 1u << 30;
+// The highest sample rate read (768 kHz, the top of the PCM rates in use): a header claiming more is
+// refused before any buffer is sized by it (a 4 kB file saying 1 GHz once took 3 GB in metrics' FFTs).
+constexpr int kMaxReadRateHz = 768000;
+void checkSampleRate(const std::string& path, int rate_hz) {
+  if (rate_hz > kMaxReadRateHz)
+    throw core::InputError(path, "sample rate " + std::to_string(rate_hz) + " Hz is above the highest diffray reads (" +
+                                     std::to_string(kMaxReadRateHz) + " Hz)");
+}
 
 struct SndfileCloser {
   void operator()(SNDFILE* f) const { sf_close(f); }
@@ -81,6 +89,7 @@ AudioBuffer readAudio(const std::string& path) {
   if (info.frames <= 0) throw core::InputError(path, "the audio file holds no frames");
   if (info.channels <= 0 || info.samplerate <= 0)
     throw core::InputError(path, "the audio file has no channels or no sample rate");
+  checkSampleRate(path, info.samplerate);
   if (static_cast<double>(info.frames) * info.channels > kMaxSamples)
     throw core::InputError(path, "the audio file is too long (more than 2^30 samples)");
   AudioBuffer out;
@@ -160,6 +169,10 @@ AudioReader::AudioReader(const std::string& path) : path_(path) {
     sf_close(file);  // the destructor does not run when the constructor throws
     throw core::InputError(path, info.frames <= 0 ? "the audio file holds no frames"
                                                   : "the audio file has no channels or no sample rate");
+  }
+  if (info.samplerate > kMaxReadRateHz) {
+    sf_close(file);
+    checkSampleRate(path, info.samplerate);
   }
   file_ = file;
   sample_rate_hz_ = info.samplerate;

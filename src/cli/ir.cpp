@@ -87,7 +87,13 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
       ->check(CLI::Range(-1, 50));
   sub->add_option("--length", opts->length_s, "IR length in s (default: the room file's, or until -60 dB)")
-      ->check(CLI::Range(1e-3, 120.0));
+      ->check(CLI::Range(1e-3, 120.0))
+      ->check(CLI::Validator(
+          [](std::string& text) {  // CLI::Range lets NaN through (every comparison with it is false)
+            double v = 0.0;
+            return CLI::detail::lexical_cast(text, v) && std::isfinite(v) ? std::string() : "must be a number";
+          },
+          "", "finite"));
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
