@@ -199,7 +199,7 @@ long AudioReader::read(float* out, long frames) {
 }
 
 WavWriter::WavWriter(const std::string& path, int sample_rate_hz, int channels)
-    : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), channels_(channels) {
+    : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), registered_(tmp_), channels_(channels) {
   SF_INFO info;
   std::memset(&info, 0, sizeof(info));
   info.samplerate = sample_rate_hz;

@@ -27,6 +27,7 @@
 #include "diffray/cli/commands.h"
 #include "diffray/cli/play.h"
 #include "diffray/core/error.h"
+#include "diffray/core/temp_files.h"
 #include "diffray/dsp/multichannel_convolver.h"
 #include "diffray/dsp/resample.h"
 
@@ -65,6 +66,7 @@ long chunkFor(int block) { return std::max<long>(block, 65536); }
 /// Removes a file when it goes out of scope (the temporary of the two-pass --normalize).
 struct RemoveOnExit {
   std::string path;
+  core::TempRegistration registered{path};  // and on an interrupt
   ~RemoveOnExit() { std::remove(path.c_str()); }
 };
 

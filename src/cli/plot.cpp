@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "diffray/core/error.h"
+#include "diffray/core/temp_files.h"
 
 namespace diffray::cli {
 
@@ -59,6 +60,7 @@ void runGnuplot(const std::string& option, const std::string& png_path,
   const fs::path dir = fs::temp_directory_path() / ("diffray-plot-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string tmp_png = png_path + ".tmp." + std::to_string(::getpid());
+  const core::TempRegistration registered(tmp_png);  // deleted if the program is interrupted meanwhile
   const fs::path script_path = dir / "plot.gp";
   std::ofstream(script_path) << script_for(tmp_png, dir.string());
   const std::string cmd = "gnuplot " + quoted(script_path.string()) + " 2>" + quoted((dir / "err.txt").string());

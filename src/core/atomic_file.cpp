@@ -12,6 +12,7 @@ namespace diffray::core {
 
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const TempRegistration registered(tmp);  // deleted if the program is interrupted meanwhile
   try {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path, "cannot open for writing");
@@ -40,6 +41,7 @@ void OutputFiles::commit() {
     }
   }
   staged_.clear();
+  registered_.clear();
 }
 
 void OutputFiles::rethrowNaming(const InputError& e, const std::string& staging, const std::string& path) {

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "diffray/core/temp_files.h"
+
 namespace diffray::audio {
 
 struct AudioBuffer {
@@ -89,6 +91,7 @@ class WavWriter {
  private:
   std::string path_;
   std::string tmp_;
+  core::TempRegistration registered_;  ///< tmp_, deleted if the program is interrupted before commit()
   void* file_ = nullptr;  ///< SNDFILE*
   int channels_ = 0;
   long written_ = 0;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "diffray/core/error.h"
+#include "diffray/core/temp_files.h"
 
 namespace diffray::core {
 
@@ -32,6 +33,7 @@ class OutputFiles {
   void write(const std::string& path, WriteFile&& write_file) {
     const std::string staging = stagingName(path, staged_.size());
     staged_.emplace_back(staging, path);
+    registered_.emplace_back(staging);  // deleted if the program is interrupted before commit()
     try {
       write_file(staging);
     } catch (const InputError& e) {
@@ -49,6 +51,7 @@ class OutputFiles {
  private:
   [[noreturn]] static void rethrowNaming(const InputError& e, const std::string& staging, const std::string& path);
   std::vector<std::pair<std::string, std::string>> staged_;  ///< (staging, target), not yet renamed
+  std::vector<TempRegistration> registered_;                 ///< the staging names, for an interrupt
 };
 
 }  // namespace diffray::core
