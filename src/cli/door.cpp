@@ -23,6 +23,7 @@
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
+#include "diffray/cli/plot.h"
 #include "diffray/cli/spectrogram_plot.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
@@ -73,8 +74,7 @@ void checkOutputs(const DoorOptions& o, const std::string& png, std::vector<std:
   checkOutputFile(png, ".png");
   inputs.push_back(o.in);
   checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, ".csv"), png}, inputs);
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw core::InputError("--spectrogram", "needs gnuplot (Debian: apt-get install gnuplot-nox)");
+  checkPlotOption("--spectrogram", png);  // a name gnuplot can write, and gnuplot itself, before the work
 }
 
 double toDb(double ratio) { return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity(); }

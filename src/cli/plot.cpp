@@ -57,8 +57,12 @@ void runGnuplot(const std::string& option, const std::string& png_path,
   refuseControlCharacters(option, png_path);
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw core::InputError(option, "needs gnuplot (Debian: apt-get install gnuplot-nox)");
-  const fs::path dir = fs::temp_directory_path() / ("diffray-plot-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  // A fresh private folder (mkdtemp: mode 0700, never one that someone else made in a shared /tmp, where a
+  // planted plot.gp would run as this user).
+  std::string dir_template = (fs::temp_directory_path() / "diffray-plot-XXXXXX").string();
+  if (::mkdtemp(dir_template.data()) == nullptr)
+    throw core::InputError(option, "cannot create a temporary folder for gnuplot in " + fs::temp_directory_path().string());
+  const fs::path dir(dir_template);
   const std::string tmp_png = png_path + ".tmp." + std::to_string(::getpid());
   const core::TempRegistration registered(tmp_png);  // deleted if the program is interrupted meanwhile
   const fs::path script_path = dir / "plot.gp";

@@ -364,6 +364,10 @@ std::vector<double> poissonDiracs(long samples, double sample_rate_hz, double vo
   // Events of the rate μ(t) = min(4πc³t²/V, μmax) by inverting its integral Λ(t) at the partial sums of
   // unit exponentials: Λ = 4πc³t³/(3V) up to t_cap (where μ reaches μmax), then linear.
   const double a = 4.0 * core::kPi * std::pow(speed_of_sound_m_s, 3) / volume_m3;
+  if (!(std::isfinite(a) && a > 0.0))  // a volume of ~1e-300 m³ made a infinite and the event loop endless
+    throw core::InputError("volume", "the Dirac rate 4πc³/V must be finite and positive (V = " +
+                                         std::to_string(volume_m3) + " m³, c = " + std::to_string(speed_of_sound_m_s) +
+                                         " m/s)");
   const double t_cap = std::sqrt(kMaxDiracRate / a);
   const double lambda_cap = a * t_cap * t_cap * t_cap / 3.0;
   const double end_s = static_cast<double>(samples) / sample_rate_hz;

@@ -117,7 +117,7 @@ CaseResult runModels(const std::string& name, const room::Room& room, const std:
   r.target_rel_peak = 1.0;
   r.negative_energy_fraction = all > 0 ? neg / all : 0.0;
   r.passed = s.ok && s.n > 0;  // no listener in a zone with a target: nothing was checked
-  r.extra["listeners_checked"] = s.n;
+  r.extra["levels_checked"] = s.n;  // (listener, band) pairs with a target
   r.extra["utd_worst_db"] = s.worst_utd;
   r.extra["occluder_events"] = static_cast<double>(w.occluder_events);
   std::ostringstream d;

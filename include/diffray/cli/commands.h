@@ -74,8 +74,10 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common);
 
 /// JSON text for stdout and sidecars. File names may hold any bytes: a string that is not UTF-8 gets U+FFFD
 /// where it breaks, instead of an exception after the work is done.
-inline std::string jsonText(const nlohmann::json& j, int indent = -1) {
-  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+/// A template, so that an ordered_json keeps its key order (band keys 63, 125, …, not sorted as text).
+template <class Json>
+std::string jsonText(const Json& j, int indent = -1) {
+  return j.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
 }  // namespace diffray::cli
