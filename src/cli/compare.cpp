@@ -186,7 +186,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     // behind a surface (below the ground) is warned about by compareScene instead (compare/scene_checks.h).
     for (const auto& w : warnings)
       if (w.find("is not closed") == std::string::npos && w.find("is outside the room") == std::string::npos)
-        std::cerr << "diffray: warning: " << w << "\n";
+        std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
     compare::CompareOptions co;
     co.models = splitModels(o->models);
     co.rays = o->rays;
@@ -201,7 +201,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     };
     const compare::SceneComparison c = compare::compareScene(room, co);
     progress.finish();
-    for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << w << "\n";
+    for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
     OutputFiles written;  // replaced together: a later failure leaves the previous files
     if (!o->plot.empty()) written.write(o->plot, [&](const std::string& f) { writeComparePlot(f, room, c); });
     if (!o->csv.empty()) written.write(o->csv, [&](const std::string& f) { writeCompareCsv(f, room, c); });

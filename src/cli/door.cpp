@@ -178,7 +178,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       warnings.push_back("the door is still closing when " + opts->in + " ends (at " +
                          std::to_string(static_cast<double>(reader.frames()) / fs) + " s); the output's tail is the "
                          "last IR's");
-    for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+    for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
 
     // The responses, one trace per step.
     door::ClosingOptions co;
@@ -191,7 +191,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
     const door::ClosingResponse cr = door::simulateClosing(room, door, schedule, co);
     progress.finish();
-    for (const auto& w : cr.warnings) std::cerr << "diffray: warning: " << w << "\n";
+    for (const auto& w : cr.warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
 
     // Band energies per step and chosen listener, and their levels re the open door (step 0), once.
     std::vector<std::vector<core::BandArray>> energy(schedule.size()), level_db(schedule.size());

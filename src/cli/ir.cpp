@@ -127,11 +127,11 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     core::Progress progress("ir " + room.name, rays * room.sources.size());
     so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
     so.on_start = [&warnings] {
-      for (const auto& w : warnings) std::cerr << "diffray: warning: " << w << "\n";
+      for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
     };
     const transport::RoomSimulation sim = transport::simulateRoom(room, so);
     progress.finish();
-    for (const auto& w : sim.warnings) std::cerr << "diffray: warning: " << w << "\n";
+    for (const auto& w : sim.warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
 
     // Synthesis and metrics, per listener.
     const auto t_synth = std::chrono::steady_clock::now();

@@ -10,21 +10,6 @@
 
 namespace {
 
-// The message on one line: a control character (a newline in a file name, an escape from a file's bytes)
-// is written as \n, \t or \xNN.
-std::string oneLine(const char* message) {
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  for (const char* p = message; *p; ++p) {
-    const unsigned char c = static_cast<unsigned char>(*p);
-    if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
-    else out += static_cast<char>(c);
-  }
-  return out;
-}
-
 // Runs a subcommand; a result it could not write to stdout (a full disk, a closed pipe) is an error too.
 int finish(int code) {
   std::cout.flush();
@@ -61,7 +46,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "diffray: error: " << oneLine(e.what()) << " (see diffray --help)\n";
+    std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << " (see diffray --help)\n";
     return 2;
   }
   try {
@@ -77,10 +62,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return finish(render());
     return 2;
   } catch (const diffray::core::InputError& e) {
-    std::cerr << "diffray: error: " << oneLine(e.what()) << "\n";
+    std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "diffray: internal error (please report): " << oneLine(e.what()) << "\n";
+    std::cerr << "diffray: internal error (please report): " << diffray::core::oneLine(e.what()) << "\n";
     return 3;
   }
 }

@@ -5,6 +5,19 @@
 
 namespace diffray::core {
 
+std::string oneLine(const std::string& text) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (const char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    else out += ch;
+  }
+  return out;
+}
+
 void requireFinite(const std::string& where, double value) {
   if (!std::isfinite(value)) throw InputError(where, "must be a finite number, got " + std::to_string(value));
 }

@@ -7,6 +7,10 @@
 
 namespace diffray::core {
 
+/// `text` on one line for the terminal: control characters (a newline in a file name, an escape byte from a
+/// file) written as \\n, \\t or \\xNN. For errors and warnings that quote names from the user or a file.
+std::string oneLine(const std::string& text);
+
 /// Bad user input. `where` names the file, option or field (may be empty); `what` says what is wrong.
 class InputError : public std::runtime_error {
  public:
