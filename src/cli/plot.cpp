@@ -36,7 +36,7 @@ std::string quoted(const std::string& s) {
   std::string q = "'";
   for (char c : s) {
     if (c == '\'') q += "''";
-    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) q += ' ';
+    else if (core::isControlCharacter(c)) q += ' ';
     else q += c;
   }
   return q + "'";
@@ -45,7 +45,7 @@ std::string quoted(const std::string& s) {
 // Plot files are named in the gnuplot script: a name with a control character cannot be written as given.
 void refuseControlCharacters(const std::string& option, const std::string& path) {
   for (char c : path)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+    if (core::isControlCharacter(c))
       throw core::InputError(option, "the plot's file name contains a control character (a newline, a tab…): "
                                      "choose a plain name");
 }

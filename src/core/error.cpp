@@ -12,7 +12,7 @@ std::string oneLine(const std::string& text) {
     const unsigned char c = static_cast<unsigned char>(ch);
     if (c == '\n') out += "\\n";
     else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7f) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    else if (isControlCharacter(ch)) out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
     else out += ch;
   }
   return out;

@@ -79,14 +79,17 @@ bool scatterAtOccluder(const Occluder& occ, const Scene::ObjectRef& obj, const d
 }
 
 // Deposits the ray's energy in every sphere its segment [tnear, t_end) passes through, weighted by the
-// chord inside (receiver/sphere.h: a track-length estimator).
-void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
+// chord inside (receiver/sphere.h: a track-length estimator). Out of line: most scenes have no sphere, and
+// tallySpheres (below) then costs one inlined test instead of a call.
+[[gnu::noinline]] void tallyEverySphere(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
   const auto& spheres = scene.spheres();
-  if (spheres.empty()) return;
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     const double chord = spheres[i].chordLength(s.o, s.d, s.tnear, t_end);
     if (chord > 0.0) acc.spheres[i].add(0, s.energy * spheres[i].chordWeight(chord));
   }
+}
+inline void tallySpheres(const Scene& scene, const PathState& s, double t_end, TraceResult& acc) {
+  if (!scene.spheres().empty()) tallyEverySphere(scene, s, t_end, acc);
 }
 
 // What happens to a ray at its next hit; returns whether it goes on.
@@ -94,7 +97,7 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
                TraceResult& acc) {
   ++acc.segments;
   if (object < 0) {
-    if (!scene.spheres().empty()) tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
+    tallySpheres(scene, s, std::numeric_limits<double>::infinity(), acc);
     acc.escaped += s.energy;
     if (const FarField* ff = scene.farField()) {
       const double alpha = dot(s.d, ff->ex);
@@ -108,7 +111,7 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
   const double dn = dot(s.d, obj.frame.n);
   double t = (obj.origin_n - dot(s.o, obj.frame.n)) / dn;
   if (!(std::isfinite(t) && t > 0)) t = t_embree;
-  if (!scene.spheres().empty()) tallySpheres(scene, s, t, acc);  // (most scenes have none: no call)
+  tallySpheres(scene, s, t, acc);
   const double p[3] = {s.o[0] + t * s.d[0], s.o[1] + t * s.d[1], s.o[2] + t * s.d[2]};
   switch (obj.kind) {
     case ObjectKind::Screen: {

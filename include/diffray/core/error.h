@@ -10,6 +10,8 @@ namespace diffray::core {
 /// `text` on one line for the terminal: control characters (a newline in a file name, an escape byte from a
 /// file) written as \\n, \\t or \\xNN. For errors and warnings that quote names from the user or a file.
 std::string oneLine(const std::string& text);
+/// An ASCII control character (below 0x20, or DEL): what oneLine escapes and gnuplot scripts may not hold.
+inline bool isControlCharacter(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
 
 /// Bad user input. `where` names the file, option or field (may be empty); `what` says what is wrong.
 class InputError : public std::runtime_error {
