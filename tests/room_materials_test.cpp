@@ -38,8 +38,7 @@ TEST(StatRoomSurfaceEvents, LambertSamplerHasTheCosineDensity) {
     std::vector<double> counts(cos_bins * phi_bins, 0.0);
     double worst_norm = 0.0, worst_side = 1.0;
     for (int i = 0; i < draws; ++i) {
-      const double u1 = uni(gen), u2 = uni(gen);
-      const Vec3 d = sampleLambert(n, u1, u2);
+      const Vec3 d = sampleLambert(n, [&] { return uni(gen); });
       worst_norm = std::max(worst_norm, std::abs(d.norm() - 1.0));
       const double c = d.dot(n);
       worst_side = std::min(worst_side, c);

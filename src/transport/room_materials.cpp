@@ -56,14 +56,4 @@ core::BandArray toBands(const Octaves& o) {
   return a;
 }
 
-core::Vec3 sampleLambert(const core::Vec3& n, double u1, double u2) {
-  // Orthonormal basis (Duff et al. 2017, branchless).
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z()), b = n.x() * n.y() * a;
-  const core::Vec3 t1(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
-  const core::Vec3 t2(b, sign + n.y() * n.y() * a, -n.y());
-  const double r = std::sqrt(u1), phi = core::kTwoPi * u2;
-  return r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0, 1.0 - u1)) * n;
-}
-
 }  // namespace diffray::transport

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -90,6 +91,7 @@ struct Tracer {
     Pair r2_plus_margin;  ///< r² plus a margin (m²)
   };
   std::vector<ListenerPair> listener_pairs;
+  int pair_count = 0;  ///< listener_pairs.size(), as the pre-test's loop bound
   int bands = 0, bins = 0;
   double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
   double max_path_m = 0.0;
@@ -114,7 +116,7 @@ struct Tracer {
     // the three signed excesses is then negative (each with a margin above its rounding, so that the test
     // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
     const std::size_t n = spheres.size();
-    if (listener_pairs.empty()) return;
+    if (pair_count == 0) return;
     const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
     const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
     const auto excessOf = [&](const ListenerPair& lp) {
@@ -129,14 +131,16 @@ struct Tracer {
     const Pair one = {1.0, 1.0};
     Pair closest = excessOf(listener_pairs[0]);
     closest = closest < one ? closest : one;
-    for (std::size_t k = 1; k < listener_pairs.size(); ++k) {
+    for (int k = 1; k < pair_count; ++k) {
       const Pair excess = excessOf(listener_pairs[k]);
       closest = excess < closest ? excess : closest;
     }
     if (!anySignBit(closest)) return;  // every excess ≥ 0 (a −0 goes on: chordSpan decides)
+    // Copies: chordSpan takes addresses, which would otherwise keep the loop's pos and dir in memory.
+    const double o[3] = {pos.x(), pos.y(), pos.z()}, d[3] = {dir.x(), dir.y(), dir.z()};
     for (std::size_t l = 0; l < n; ++l) {
       double t_in, t_out;
-      if (!spheres[l].chordSpan(pos.data(), dir.data(), 0.0, t_end, t_in, t_out)) continue;
+      if (!spheres[l].chordSpan(o, d, 0.0, t_end, t_in, t_out)) continue;
       ++acc.crossings[l];
       if (skip || (l < 64 && (skip_listeners >> l & 1u))) continue;
       const double s_mid = path_m + 0.5 * (t_in + t_out);
@@ -168,9 +172,12 @@ struct Tracer {
   SegmentHit cast(const Vec3& o, const Vec3& d) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    return cast(o, d, context);
+    RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
+    return cast(o, d, context, rh);
   }
-  SegmentHit cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context) const {
+  // `rh`: a ray from makeRayHit (tnear 0), reused along a path: Embree leaves its tnear, time, mask, id and
+  // flags as they are, so only the origin, direction, tfar and the hit's ids are set here.
+  SegmentHit cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context, RTCRayHit& rh) const {
     SegmentHit h;
     const RTCScene scene = geometry.embreeScene();
     if (!scene) {
@@ -179,7 +186,12 @@ struct Tracer {
       h.triangle = g.valid() ? g.triangle : -1;
       return h;
     }
-    RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
+    rh.ray.org_x = static_cast<float>(o.x()), rh.ray.org_y = static_cast<float>(o.y());
+    rh.ray.org_z = static_cast<float>(o.z());
+    rh.ray.dir_x = static_cast<float>(d.x()), rh.ray.dir_y = static_cast<float>(d.y());
+    rh.ray.dir_z = static_cast<float>(d.z());
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.t = rh.ray.tfar;
@@ -372,6 +384,7 @@ struct Tracer {
     std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    RTCRayHit ray = geometry::makeRayHit(pos, dir, 0.0, 1e300);
     // Options read once (opt is a reference: each use would be two loads). Roulette's threshold (on the
     // Path's energies, and relative to `scale` on e), the latter also as four floats rounded up, so that a
     // band at or above them is at or above it.
@@ -384,14 +397,14 @@ struct Tracer {
     for (;;) {
       // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
       // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
-      SegmentHit hit = cast(pos, dir, context);
+      SegmentHit hit = cast(pos, dir, context, ray);
       ++acc.segments;
       if (!hit.valid()) {
         // Embree's fast (non-watertight) traversal can let a ray through the shared edge of two triangles:
         // about one ray in 30,000 in a finely tessellated room. Escapes are rare, so look again along a
         // direction turned by ~1e-6 rad before believing one (a real opening lets the retry out too).
         const Vec3 nudged = (dir + 1e-6 * Vec3(dir.y() - dir.z(), dir.z() - dir.x(), dir.x() - dir.y())).normalized();
-        hit = cast(pos, nudged, context);
+        hit = cast(pos, nudged, context, ray);
         ++acc.segments;
       }
       // Embree's distance is float. Well inside a triangle the hit point is put back on its plane by a
@@ -465,8 +478,7 @@ struct Tracer {
         const double p_diffuse = materials.p_diffuse[m];
         if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
           weigh<NB>(e, materials.w_diffuse, materials.octave_diffuse, m);
-          const double u1 = rng.uniform(), u2 = rng.uniform();
-          dir = sampleLambert(side * tri.normal, u1, u2);
+          dir = sampleLambert(side * tri.normal, [&rng] { return rng.uniform(); });
           specular_chain = false;
         } else {
           weigh<NB>(e, materials.w_specular, materials.octave_specular, m);
@@ -538,7 +550,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
   core::requirePositive("speed of sound", options.speed_of_sound_m_s);
   if (options.rays == 0) throw core::InputError("--rays", "must be at least 1");
   const auto t0 = std::chrono::steady_clock::now();
-  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}, {}};
+  Tracer tr{room, geometry, options, makeMaterials(room), {}, {}, 0, room.bands.size(), 0, 0.0, 0.0, 0.0, {}, {}, {}, {}};
   for (const room::Listener& l : room.listeners) {
     tr.spheres.push_back({l.position_m, l.radius_m});
     // The margins: far above the rounding of the squared distance (terms up to extent², relative 1e-16)
@@ -556,6 +568,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     lp.r_slack[lane] = r + 1e-9 * (e + r);
     lp.r2_plus_margin[lane] = r * r + 1e-9 * (e * e + r * r);
   }
+  tr.pair_count = static_cast<int>(tr.listener_pairs.size());
   tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
