@@ -190,7 +190,9 @@ void benchConvergence(const std::string& case_name, bool qmc) {
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "all";
   try {
-    if (which == "all" || which == "transport") benchTransport(8'000'000);
+    // `diffray_bench transport [PATHS]`: fewer paths for profiling.
+    if (which == "all" || which == "transport")
+      benchTransport(argc > 2 && which == "transport" ? std::stoull(argv[2]) : 8'000'000);
     if (which == "all" || which == "room") {
       // The shipped rooms, from the source folder (DIFFRAY_SOURCE_DIR) or the working directory.
       // `diffray_bench room NAME [RAYS]` runs one of them (profiling).
