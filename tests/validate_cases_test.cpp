@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "diffray/validate/case.h"
 #include "validate_fixtures.h"
@@ -93,6 +94,17 @@ TEST(StatValidate, DoorAgreesWithRayleighSommerfeldWithinDocumentedBias) {
   // 8M rays (4M per frequency) keep 5σ near 1 % of peak, so the test is not dominated by noise.
   const auto r = runCase("door-rs", 8'000'000, {{"freq", {250, 1000}}});
   EXPECT_LE(worstRatio(r, 0.012), 1.0);
+}
+
+// Each frequency is its own pattern, however close two are: labels once had 6 significant digits, so
+// 1000 and 1000.0001 Hz merged into one pattern (scored against one peak, reported once).
+TEST(ValidateDoor, CloseFrequenciesStaySeparatePatterns) {
+  const auto r = runCase("door-rs", 20'000, {{"freq", {1000.0, 1000.0001}}});
+  EXPECT_EQ(r.extra.count("max_abs_error_rel_peak[f=1000Hz]"), 1u);
+  EXPECT_EQ(r.extra.count("max_abs_error_rel_peak[f=1000.0001Hz]"), 1u);
+  std::set<std::string> labels;
+  for (const auto& row : r.rows) labels.insert(row.label);
+  EXPECT_EQ(labels.size(), 2u);
 }
 
 TEST(StatValidate, SameSeedSameResult) {
