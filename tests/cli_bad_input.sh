@@ -619,5 +619,63 @@ if command -v gnuplot >/dev/null 2>&1; then
     passes=$((passes + 1)); else echo "FAIL: --plot did not write a PNG"; fails=$((fails + 1)); fi
 fi
 
+# Values once taken silently (clamped, truncated, dropped, read as octal) or blamed on the wrong option or file.
+expect_clean "--seed above 2^64-1"     "out.csv*" "--seed: must be at most 18446744073709551615" validate slit-fraunhofer --rays 1000 --seed 99999999999999999999999 "$csv"
+expect_clean "validate --order 2.5"    "out.csv*" "--order: must be a whole number" validate shoebox-ism --order 2.5 --rays 1000 "$csv"
+expect_clean "validate --floor 0.7"    "out.csv*" "--floor: must be a whole number" validate door-room --floor 0.7 --rays 1000 "$csv"
+expect_clean "ir --ism-order 2.5"      "out.*" "--ism-order: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 1000 --ism-order 2.5
+expect_clean "door --steps 2.5"        "door.*" "--steps: must be a whole number" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --steps 2.5
+expect_clean "wdf --count 2.5"         "out.csv*" "--count: must be a whole number" wdf slits --count 2.5 "$csv"
+expect_clean "wdf --count 0x3"         "out.csv*" "--count: must be a whole number" wdf slits --count 0x3 "$csv"
+expect_clean "--threads 1.5"           "out.csv*" "--threads: must be a whole number" validate slit-fraunhofer --rays 1000 --threads 1.5 "$csv"
+expect_clean "signal --rate 48000.5"   "sig.*" "--rate: must be a whole number" signal clicks -o "$tmp/sig.wav" --rate 48000.5
+# A whole number may be written as 1e1 (like --rays 2e6), and a leading zero is decimal: --seed 010 is seed 10.
+"$bin" validate slit-fraunhofer --rays 2000 --seed 010 --csv "$tmp/s010.csv" >/dev/null 2>&1
+"$bin" validate slit-fraunhofer --rays 2000 --seed 10 --csv "$tmp/s10.csv" >/dev/null 2>&1
+if cmp -s "$tmp/s010.csv" "$tmp/s10.csv" && "$bin" signal clicks -o "$tmp/sig.wav" --rate 4.8e4 --duration 0.1 >/dev/null 2>&1 &&
+   "$bin" validate shoebox-ism --order 2e0 --rays 1000 --json >/dev/null 2>&1; then passes=$((passes + 1)); else
+  echo "FAIL: --seed 010 is not seed 10, or --rate 4.8e4 / --order 2e0 was refused"; fails=$((fails + 1)); fi
+rm -f "$tmp"/s010.csv "$tmp"/s10.csv "$tmp"/sig.*
+# An empty output name is refused, naming the option, not taken as "no such output" or the default name.
+for args in "validate slit-fraunhofer --rays 1000 --csv" "validate slit-fraunhofer --rays 1000 --plot" "wdf slit --csv" \
+            "compare $rooms/barrier.json --models utd --fine-per-octave 2 --csv" "ir $rooms/shoebox.json --rays 1000 --plot" \
+            "render $tmp/light.json --photons 100 -o" "auralize --ir $tmp/ok.wav --in $tmp/ok.wav -o" "signal clicks -o" \
+            "spectrogram $tmp/ok.wav -o" "door $two --in $tmp/burst.wav --close 0.1:0.2 -o"; do
+  # shellcheck disable=SC2086
+  expect_clean "empty output name: ${args%% *} ${args##* }" "out.*" "an output file name must not be empty" $args ""
+done
+expect_clean "door --spectrogram \"\"" "door.*" "--spectrogram: an output file name must not be empty" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --spectrogram ""
+(cd "$tmp" && "$bin" ir lib/shoebox.json -o "" --rays 1000 >/dev/null 2>"$tmp/stderr")
+if [ $? -eq 2 ] && grep -q -- "--output: an output file name must not be empty" "$tmp/stderr" && ! ls "$tmp"/shoebox.* >/dev/null 2>&1; then
+  passes=$((passes + 1)); else echo "FAIL: ir -o \"\" was not refused"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+expect_clean "--freq 125,,250"         "out.csv*" 'empty entry in "125,,250"' validate door-rs --freq 125,,250 --rays 1000 "$csv"
+expect_clean "--freq 125,"             "out.csv*" 'empty entry in "125,"' validate door-rs --freq 125, --rays 1000 "$csv"
+expect_clean "--dims 10,,7,3"          "out.csv*" "--dims: empty entry" validate shoebox-ism --dims 10,,7,3 --rays 1000 "$csv"
+python3 - "$tmp" <<'EOF'
+import json, struct, sys
+def wav(name, samples, rate):
+    data = struct.pack('<%df' % len(samples), *samples)
+    fmt = struct.pack('<IHHIIHH', 16, 3, 1, rate, rate * 4, 4, 32)
+    open(f"{sys.argv[1]}/{name}", 'wb').write(b'RIFF' + struct.pack('<I', 36 + len(data)) + b'WAVE' + b'fmt ' + fmt +
+                                              b'data' + struct.pack('<I', len(data)) + data)
+wav('fs100.wav', [0.0] * 50 + [1.0] + [0.0] * 349, 100)
+wav('huge.wav', [3e38] * 4, 48000)  # finite, but its convolution with itself overflows float
+room = {"materials": {"w": {"absorption": 0.3, "scattering": 0.2}},
+        "geometry": [{"box": {"min": [0, 0, 0], "max": [4, 3, 2.5], "materials": {"all": "w"}}}],
+        "sources": [{"position": [1, 1, 1]}], "output": {"max_length_s": 600},
+        "listeners": [{"position": [3, 0.2 + 0.1 * i, 1.2], "radius_m": 0.05} for i in range(25)]}
+json.dump(room, open(f"{sys.argv[1]}/many.json", "w"))
+EOF
+expect_clean "spectrogram of a 100 Hz file" "spec.*" "fs100.wav: sample rate 100 Hz" spectrogram "$tmp/fs100.wav" -o "$tmp/spec.png" --window 8
+expect_clean "door --close 0:1e300"    "door.*" "--close: START and END must be at most" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0:1e300
+expect_clean "pilot past the histogram limit" "out.*" "many.json: output.max_length_s: with no IR length set" ir "$tmp/many.json" -o "$tmp/out.wav" --rays 1000
+expect_clean "auralize --normalize overflow" "wet.*" "/wet.wav: refusing to write" auralize --ir "$tmp/huge.wav" --in "$tmp/huge.wav" -o "$tmp/wet.wav" --normalize
+expect_clean "auralize: resampling 480x" "wet.*" "ok.wav: cannot resample its 48000 Hz to the input's 100 Hz" auralize --ir "$tmp/ok.wav" --in "$tmp/fs100.wav" -o "$tmp/wet.wav"
+expect_clean "door: a 100 Hz dry signal" "door.*" "fs100.wav: sample rate 100 Hz: the room's IRs" door "$two" --in "$tmp/fs100.wav" -o "$tmp/door.wav" --close 0.1:0.2
+# wdf: an option of another kind is refused, not ignored.
+expect_clean "wdf slit --count 8"      "out.csv*" "--count: applies to slits only, not slit" wdf slit --count 8 "$csv"
+expect_clean "wdf slit --modulation 3" "out.csv*" "--modulation: applies to grating only" wdf slit --modulation 3 "$csv"
+expect_clean "wdf profile --u-range"   "out.csv*" "--u-range: applies to" wdf profile --profile "$tmp/lib/p.csv" --u-range 5 "$csv"
+
 echo "cli_bad_input: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

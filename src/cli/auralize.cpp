@@ -131,7 +131,11 @@ std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double ra
     if (no_resample)
       throw core::InputError(ir_path, "sample rate " + ir_hz + " differs from the input's " + in_hz +
                                        " (--no-resample: resample one of them first, or drop the flag)");
-    h = dsp::resampleImpulseResponse(h, ir.channels, ir.sample_rate_hz, rate_hz);
+    try {
+      h = dsp::resampleImpulseResponse(h, ir.channels, ir.sample_rate_hz, rate_hz);
+    } catch (const core::InputError& e) {  // "resample: rate ratio … lies outside …": name the file
+      throw core::InputError(ir_path, "cannot resample its " + ir_hz + " to the input's " + in_hz + ": " + reasonOf(e));
+    }
     std::cout << "resampled the impulse response from " << ir_hz << " to the input's " << in_hz << " (libsamplerate, best sinc; "
               << ir.frames() << " -> " << h.size() / static_cast<size_t>(ir.channels) << " frames)\n";
   }
@@ -151,7 +155,8 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
                   "into a 32-bit float WAV that keeps the whole reverberant tail.");
   sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output");
   sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)");
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)");
+  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)")
+      ->check(outputPathValidator());
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output (-120 - 120)")
       ->check(gainDbValidator())
       ->capture_default_str();
@@ -164,7 +169,9 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
                                                    "(default: the system's default output)");
   CLI::Option* block = sub->add_option("--block", o->playback.block_frames,
                                        "with --play: audio block in frames, 16 - 16384 (the latency: block / "
-                                       "sample rate)")->capture_default_str();
+                                       "sample rate)")
+                           ->transform(wholeNumberValidator())
+                           ->capture_default_str();
   sub->add_flag("--list-devices", o->list_devices, "list the audio output devices and exit");
   return [o, block]() {
     if (o->list_devices) return listAudioDevices();
@@ -204,10 +211,13 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     } else {
       RemoveOnExit unscaled{o->out + ".unscaled.tmp." + std::to_string(::getpid())};
       double raw_peak = 0.0;
-      {
+      try {
         audio::WavWriter pass1(unscaled.path, rate, conv.outputChannels());
         raw_peak = convolveInto(dry, conv, fft_block, 1.0f, pass1);
         pass1.commit();
+      } catch (const core::InputError& e) {  // a sample that overflowed: the user's output, not the temporary
+        if (e.where() != unscaled.path) throw;
+        throw core::InputError(o->out, reasonOf(e));
       }
       const double scale = raw_peak > 0.0 ? std::pow(10.0, kNormalizedPeakDbfs / 20.0) / raw_peak * gain : gain;
       if (raw_peak == 0.0) std::cerr << "diffray: warning: the output is silent; --normalize leaves it so\n";

@@ -163,12 +163,16 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")->required();
   sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
   addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
-  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->check(seedValidator())->capture_default_str();
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
-  sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file");
-  sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)");
+  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->transform(seedValidator())->capture_default_str();
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
+  sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file")
+      ->check(outputPathValidator());
+  sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)")
+      ->check(outputPathValidator());
   sub->add_option("--fine-per-octave", o->fine, "fine-grid frequencies per octave for UTD and exact")
-      ->check(CLI::Range(1, 400))
+      ->transform(wholeNumberValidator(1, 400))
       ->capture_default_str();
   sub->add_flag("--aim", o->aim,
                 "aim every WBSDF ray at the scene's single occluder (valid only when every path to the listeners "

@@ -32,6 +32,7 @@
 #include "diffray/door/closing.h"
 #include "diffray/door/sliding_panel.h"
 #include "diffray/dsp/crossfade_convolver.h"
+#include "diffray/dsp/resample.h"
 #include "diffray/dsp/spectrogram.h"
 #include "diffray/room/scene_file.h"
 
@@ -66,6 +67,11 @@ void parseClose(const std::string& text, double& start_s, double& end_s) {
     }
   }
   if (!ok) throw core::InputError("--close", "must be START:END in seconds (e.g. 1.5:3), got \"" + text + "\"");
+  // The crossfade's key times are counted in samples (a long): 1e300 s would overflow there and be blamed on
+  // --steps. A door still closing 30 years into the dry signal plays its last IR anyway.
+  constexpr double kMaxCloseS = 1e9;
+  if (std::abs(start_s) > kMaxCloseS || std::abs(end_s) > kMaxCloseS)
+    throw core::InputError("--close", "START and END must be at most 1e9 s, got \"" + text + "\"");
 }
 
 // `inputs`: every file the room was read from (Room::input_files); the dry signal is added.
@@ -124,11 +130,13 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("room", opts->room_file, "scene file with a door that has a \"panel\" material (rooms/README.md)")
       ->required();
   sub->add_option("--in", opts->in, "dry signal (WAV, FLAC, ...; its sample rate is the output's)")->required();
-  sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener)")->required();
+  sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener)")
+      ->check(outputPathValidator())
+      ->required();
   sub->add_option("--close", opts->close, "START:END in seconds: the panel leaves the door open at START, shut at END")
       ->required();
   sub->add_option("--steps", opts->steps, "openings traced: gaps W, W/2, W/4, ... and shut")
-      ->check(CLI::Range(2, 32))
+      ->transform(wholeNumberValidator(2, 32))
       ->capture_default_str();
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
   sub->get_option("--diffraction")->default_val("wbsdf");
@@ -136,10 +144,13 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--listener", opts->listener, "render this listener only (default: all, one channel each)");
   addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
   CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
-                                  ->check(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+                                  ->transform(seedValidator());
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(gainDbValidator());
-  sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)");
+  sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)")
+      ->check(outputPathValidator());
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
 
   return [opts, &common, seed_option]() {
@@ -172,6 +183,15 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     // rate's gain (door::impulseResponseFor).
     const double synth_fs = door::synthesisRateHz(room.bands, room.output.sample_rate_hz, fs);
     checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
+    if (synth_fs != fs) {  // the IRs will be resampled to the dry signal's rate: can they be? (before the tracing)
+      try {
+        dsp::resample(std::vector<float>(1, 0.0f), 1, synth_fs, fs);
+      } catch (const core::InputError& e) {
+        const std::string hz = std::to_string(static_cast<long>(fs)), room_hz = std::to_string(static_cast<long>(synth_fs));
+        throw core::InputError(opts->in, "sample rate " + hz + " Hz: the room's IRs, made at " + room_hz +
+                                             " Hz, cannot be resampled to it: " + reasonOf(e));
+      }
+    }
     // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
     const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);
     if (end_s > static_cast<double>(reader.frames()) / fs)

@@ -77,15 +77,18 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       "ir", "Trace a room (rooms/*.json) to an impulse response (WAV + JSON sidecar + CSV histograms) and print "
             "its ISO 3382 metrics.");
   sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->required();
-  sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)");
+  sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)")
+      ->check(outputPathValidator());
   addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");
   CLI::Option* seed_option =
       sub->add_option("--seed", common.seed, "random seed (default: the room file's output.seed); the same seed "
                                              "gives the same IR")
-          ->check(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+          ->transform(seedValidator());
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
-      ->check(CLI::Range(-1, 50));
+      ->transform(wholeNumberValidator(-1, 50));
   sub->add_option("--length", opts->length_s, "IR length in s (default: the room file's, or until -60 dB)")
       ->check(CLI::Range(1e-3, 120.0))
       ->check(CLI::Validator(
@@ -95,7 +98,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
           },
           "", "finite"));
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
-  sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)");
+  sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)")
+      ->check(outputPathValidator());
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
 
   return [opts, &common, seed_option]() {

@@ -77,7 +77,9 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--bands", o->bands, "octave (63 Hz - 8 kHz) or third (third octaves, 50 Hz - 10 kHz)")
       ->check(CLI::IsMember({"octave", "third"}))
       ->capture_default_str();
-  sub->add_option("--channel", o->channel, "channel to analyse, from 1")->capture_default_str();
+  sub->add_option("--channel", o->channel, "channel to analyse, from 1")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   return [o, &common]() {
     checkAnalysisMemory(o->file, o->bands);
     const audio::AudioBuffer audio = audio::readAudio(o->file);

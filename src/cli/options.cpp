@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "diffray/cli/commands.h"
 #include "diffray/core/error.h"
@@ -17,14 +18,48 @@ std::uint64_t wholeCount(const std::string& option, double v) {
 }
 
 const CLI::Validator& seedValidator() {
-  // CLI11 would read "-3" into a std::uint64_t as 2^64 - 3; a seed is refused unless all digits.
+  // CLI11 would read "-3" into a std::uint64_t as 2^64 - 3, clamp 99999999999999999999999 to 2^64 - 1, and
+  // read "010" as octal 8: a seed is refused unless all digits and at most 2^64 - 1, and it is handed on
+  // without leading zeros (so it is read as decimal). Applied with ->transform(), which may rewrite the text.
   static const CLI::Validator check(
-      [](const std::string& text) -> std::string {
+      [](std::string& text) -> std::string {
         if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
           return "must be a whole number >= 0, got " + text;
+        const std::size_t first = std::min(text.find_first_not_of('0'), text.size() - 1);
+        const std::string digits = text.substr(first);
+        const std::string max = std::to_string(std::numeric_limits<std::uint64_t>::max());
+        if (digits.size() > max.size() || (digits.size() == max.size() && digits > max))
+          return "must be at most " + max + " (2^64 - 1), got " + text;
+        text = digits;
         return {};
       },
       "SEED", "seed");
+  return check;
+}
+
+CLI::Validator wholeNumberValidator(int lo, int hi) {
+  const bool ranged = lo != std::numeric_limits<int>::min() || hi != std::numeric_limits<int>::max();
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        // Decimal only: C's strtol, which CLI11 uses for integers, reads "010" as 8 and "0x10" as 16.
+        double v = 0.0;
+        if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos ||
+            !CLI::detail::lexical_cast(text, v) || (std::isfinite(v) && std::floor(v) != v))
+          return "must be a whole number (e.g. 8 or 1e3), got " + text;
+        if (!(v >= lo && v <= hi))  // 1e400 (infinite as a double) too
+          return "must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + text;
+        text = std::to_string(static_cast<int>(v));  // plain digits for CLI11's integer conversion
+        return {};
+      },
+      ranged ? "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]" : std::string(), "whole");
+}
+
+const CLI::Validator& outputPathValidator() {
+  static const CLI::Validator check(
+      [](const std::string& text) -> std::string {
+        return text.empty() ? "an output file name must not be empty" : std::string();
+      },
+      "", "output path");
   return check;
 }
 
@@ -65,7 +100,7 @@ void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order) 
   sub->add_option("--diffraction-order", order,
                   "wbsdf: occluder scatterings per ray path; later crossings pass straight (each one multiplies "
                   "the noise of the signed weights)")
-      ->check(CLI::Range(1, 8))
+      ->transform(wholeNumberValidator(1, 8))
       ->capture_default_str();
 }
 
@@ -96,6 +131,11 @@ void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<s
       throw core::InputError(path, "is given for two of this command's outputs, which would overwrite each other");
     if (!ec) seen.push_back(p);
   }
+}
+
+std::string reasonOf(const core::InputError& e) {
+  const std::string what = e.what();
+  return e.where().empty() ? what : what.substr(e.where().size() + 2);
 }
 
 std::string withExtension(const std::string& path, const std::string& ext) {

@@ -47,15 +47,18 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
       "render", "Render a light scene (rooms/light/README.md) by spectral light tracing with WBSDF occluders: "
                 "writes OUT.png, OUT.pfm or OUT.exr (linear floats) and OUT.json.");
   sub->add_option("scene", o->scene, "light scene file (JSON)")->required();
-  sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")->required();
+  sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")
+      ->check(outputPathValidator())
+      ->required();
   auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
   sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
-  sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)")->check(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
+  sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)")->transform(seedValidator());
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->transform(wholeNumberValidator());
   sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");
   sub->add_option("--float", o->float_format, "linear float image beside the PNG: pfm (default) or exr (OpenEXR)")
       ->check(CLI::IsMember({"pfm", "exr"}));
-  sub->add_option("--csv", o->csv, "also write every pixel (radiance, standard error, XYZ, linear sRGB) to this CSV");
+  sub->add_option("--csv", o->csv, "also write every pixel (radiance, standard error, XYZ, linear sRGB) to this CSV")
+      ->check(outputPathValidator());
   return [o, sub, &common]() {
     checkOutput(*o);
     const render::LightScene scene = render::loadLightScene(o->scene);

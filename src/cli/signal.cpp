@@ -100,8 +100,10 @@ Runner addSignalCommand(CLI::App& app, CommonOptions& /*common*/) {
       "signal", "Make a dry test signal locally (mono 32-bit float WAV): an exponential sine sweep, a click "
                 "train, or speech from espeak-ng.");
   sub->add_option("kind", o->kind, "sweep, clicks or speech")->required()->check(CLI::IsMember({"sweep", "clicks", "speech"}));
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float, mono)")->required();
-  sub->add_option("--rate", o->rate_hz, "sample rate in Hz (8000 - 384000)")->capture_default_str();
+  sub->add_option("-o,--out", o->out, "output .wav (32-bit float, mono)")->check(outputPathValidator())->required();
+  sub->add_option("--rate", o->rate_hz, "sample rate in Hz (8000 - 384000)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   CLI::Option* duration = sub->add_option(
       "--duration", o->duration_s, "length in s (sweep 10, clicks 5; speech: its own length unless given)");
   sub->add_option("--level", o->level_dbfs, "peak level in dBFS")->capture_default_str();
@@ -114,12 +116,15 @@ Runner addSignalCommand(CLI::App& app, CommonOptions& /*common*/) {
       {sub->add_option("--interval", o->clicks.interval_s, "clicks: time between clicks in s")->capture_default_str(),
        "clicks"},
       {sub->add_option("--click-width", o->clicks.width_samples, "clicks: samples per click (1, or a Hann window)")
+           ->transform(wholeNumberValidator())
            ->capture_default_str(),
        "clicks"},
       {sub->add_option("--text", o->speech.text, "speech: what to say"), "speech"},
       {sub->add_option("--voice", o->speech.voice, "speech: espeak-ng voice (espeak-ng --voices)")->capture_default_str(),
        "speech"},
-      {sub->add_option("--speed", o->speech.words_per_minute, "speech: words per minute (80 - 450)")->capture_default_str(),
+      {sub->add_option("--speed", o->speech.words_per_minute, "speech: words per minute (80 - 450)")
+           ->transform(wholeNumberValidator())
+           ->capture_default_str(),
        "speech"},
   };
   return [o, specific, duration]() {

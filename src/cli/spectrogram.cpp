@@ -86,11 +86,15 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
       "spectrogram", "Draw the spectrogram of an audio file (Hann-windowed FFT, dB, log frequency axis) as a PNG "
                      "(needs gnuplot).");
   sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->required();
-  sub->add_option("-o,--out", o->out, "output .png")->required();
-  sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")->capture_default_str();
+  sub->add_option("-o,--out", o->out, "output .png")->check(outputPathValidator())->required();
+  sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   sub->add_option("--hop", o->hop, "frame step in samples (default: window/4; long files keep the loudest of "
-                                   "each run of frames, at most 8000 runs)");
-  sub->add_option("--channel", o->channel, "channel to analyse, from 1 (default: the mean of all channels)");
+                                   "each run of frames, at most 8000 runs)")
+      ->transform(wholeNumberValidator());
+  sub->add_option("--channel", o->channel, "channel to analyse, from 1 (default: the mean of all channels)")
+      ->transform(wholeNumberValidator());
   sub->add_option("--range", o->range_db, "dB shown below the loudest pixel")->capture_default_str();
   sub->add_option("--title", o->title, "plot title (default: the file name)");
   sub->add_option("--mark", o->marks, "TIME[:LABEL]: a dashed vertical line at TIME seconds (repeatable), "
@@ -102,6 +106,15 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
     if (o->hop < 0) throw core::InputError("--hop", "must be at least 1, got " + std::to_string(o->hop));
     core::requirePositive("--range", o->range_db);
     audio::AudioReader reader(o->in);
+    SpectrogramPlotOptions plot;
+    // The frequency axis runs from min_freq_hz up to fs/2: a file sampled at 2 × min_freq_hz or less has
+    // nothing to draw. Its sample rate is the cause, not -o (where writeSpectrogramPlot would put it).
+    if (!(reader.sampleRateHz() > 2.0 * plot.min_freq_hz))
+      throw core::InputError(o->in, "sample rate " + std::to_string(static_cast<long>(reader.sampleRateHz())) +
+                                        " Hz: the spectrogram's frequency axis starts at " +
+                                        std::to_string(static_cast<int>(plot.min_freq_hz)) +
+                                        " Hz, which needs a sample rate above " +
+                                        std::to_string(static_cast<int>(2.0 * plot.min_freq_hz)) + " Hz");
     if (o->channel < 0 || o->channel > reader.channels())
       throw core::InputError("--channel", "must lie between 1 and " + std::to_string(reader.channels()) + " (" +
                                               o->in + " has " + std::to_string(reader.channels()) + "), got " +
@@ -110,7 +123,6 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
     const auto n = static_cast<long>(x.size());
     const int hop = o->hop > 0 ? o->hop : std::max(1, o->window / 4);
     const dsp::Spectrogram s = dsp::spectrogramPeaks(x.data(), n, reader.sampleRateHz(), o->window, hop, kMaxFrames);
-    SpectrogramPlotOptions plot;
     plot.title = o->title.empty() ? std::filesystem::path(o->in).filename().string() +
                                         (o->channel > 0 ? ", channel " + std::to_string(o->channel) : std::string())
                                   : o->title;

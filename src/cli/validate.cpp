@@ -35,6 +35,33 @@ struct ValidateOptions {
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
 };
 
+/// Case parameters that count (bins, orders, pixels, periods) or switch (floor, rigid-weighting: 0 or 1): the
+/// cases read them as int (or as >= 0.5), so 2.5 would silently become 2 (and 0.7 would be 1).
+const std::set<std::string> kWholeParams{"band-points", "bins", "floor", "order", "periods", "pixels", "rigid-weighting"};
+
+/// The values given to --NAME, each argument a comma-separated list ("125,250", or "125 250"). Splitting here
+/// rather than with CLI11's delimiter, which drops empty entries: "125,,250", "125," and "" are refused, not
+/// read as 125,250. A fractional value of a kWholeParams parameter is refused too (1e3 is a whole number).
+std::vector<double> parseValues(const std::string& name, const std::vector<std::string>& args) {
+  std::vector<double> values;
+  for (const std::string& arg : args)
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = arg.find(',', start);
+      const std::string item = arg.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      double v = 0.0;
+      if (item.empty())
+        throw CLI::ValidationError("--" + name, "empty entry in \"" + arg + "\" (a comma-separated list of numbers)");
+      if (!CLI::detail::lexical_cast(item, v))
+        throw CLI::ValidationError("--" + name, "must be a number, got \"" + item + "\"");
+      if (kWholeParams.count(name) && std::isfinite(v) && std::floor(v) != v)
+        throw CLI::ValidationError("--" + name, "must be a whole number, got " + item);
+      values.push_back(v);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  return values;
+}
+
 nlohmann::json toJson(const validate::CaseResult& r) {
   nlohmann::json j;
   j["case"] = r.name;
@@ -102,14 +129,17 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("case", opts->case_name, "case name, or all")->required();
   addRaysOption(sub, opts->rays, "rays per case (default: the case's own; 2e6 is accepted)");
   sub->add_option("--seed", common.seed, "random seed; the same seed gives the same result")
-      ->check(seedValidator())
+      ->transform(seedValidator())
       ->capture_default_str();
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->capture_default_str();
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
   sub->add_flag("--verbose", opts->verbose,
                 "also print each case's extra figures (energy balance, per-frequency errors, table sizes)");
-  sub->add_option("--csv", opts->csv, "write one row per receiver bin to this CSV file");
-  sub->add_option("--plot", opts->plot, "draw traced vs reference into this PNG (needs gnuplot)");
+  sub->add_option("--csv", opts->csv, "write one row per receiver bin to this CSV file")->check(outputPathValidator());
+  sub->add_option("--plot", opts->plot, "draw traced vs reference into this PNG (needs gnuplot)")
+      ->check(outputPathValidator());
   sub->add_option("--sampler", opts->sampler, "qmc: randomised quasi-Monte Carlo; mc: plain Monte Carlo")
       ->check(CLI::IsMember({"qmc", "mc"}))
       ->capture_default_str();
@@ -127,9 +157,9 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
       h += (h.empty() ? "" : "; ") + c.name + ": " + p.help + " [" + d.str() + "]";
     }
   for (const auto& [name, text] : help) {
-    auto* o = sub->add_option_function<std::vector<double>>(
-        "--" + name, [opts, n = name](const std::vector<double>& v) { opts->values[n] = v; }, text);
-    o->delimiter(',');
+    auto* o = sub->add_option_function<std::vector<std::string>>(
+        "--" + name, [opts, n = name](const std::vector<std::string>& v) { opts->values[n] = parseValues(n, v); },
+        text);
     o->type_name("X");
   }
 

@@ -79,6 +79,24 @@ std::shared_ptr<const wbsdf::WbsdfTable> makeTable(const WdfOptions& o) {
   return wbsdf::WbsdfTable::build(*m, t);
 }
 
+/// An option that belongs to some kinds only: refused with another (`wdf slit --count 8` would tabulate one slit).
+struct KindOption {
+  CLI::Option* option;
+  std::vector<std::string> kinds;
+};
+
+void checkKindOptions(const std::string& kind, const std::vector<KindOption>& specific) {
+  const std::vector<std::string> kinds{"slit", "slits", "half-plane", "grating", "rough", "profile"};
+  if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) return;  // makeTable names the unknown kind
+  for (const KindOption& k : specific) {
+    if (k.option->count() == 0 || std::find(k.kinds.begin(), k.kinds.end(), kind) != k.kinds.end()) continue;
+    std::string list;
+    for (std::size_t i = 0; i < k.kinds.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == k.kinds.size() ? " and " : ", ") + k.kinds[i];
+    throw core::InputError(k.option->get_name(), "applies to " + list + " only, not " + kind);
+  }
+}
+
 }  // namespace
 
 Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
@@ -88,26 +106,40 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
              "grating, rough (Gaussian statistics, paper eq:WDF_gamma) or profile (CSV: x [m], amplitude "
              "0..1, phase [rad]).");
   sub->add_option("kind", o->kind, "slit | slits | half-plane | grating | rough | profile")->required();
-  sub->add_option("--sigma-h", o->sigma_h_m, "rough: height standard deviation (m)");
-  sub->add_option("--corr-length", o->corr_length_m, "rough: height correlation length (m)");
-  sub->add_option("--cos-incidence", o->cos_incidence, "rough: cosine of the incidence angle")->capture_default_str();
   sub->add_option("--wavelength", o->wavelength_m, "wavelength (m)")->capture_default_str();
-  sub->add_option("--width", o->width_m, "slit width (m)")->capture_default_str();
-  sub->add_option("--spacing", o->spacing_m, "slit spacing, centre to centre (m)")->capture_default_str();
-  sub->add_option("--count", o->count, "number of slits")->capture_default_str();
-  sub->add_option("--period", o->period_m, "grating period (m)")->capture_default_str();
-  sub->add_option("--modulation", o->modulation, "grating phase modulation m: order q carries the efficiency J_q(m/2)^2")->capture_default_str();
-  sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m, > 0; 0 = 20 λ)");
-  sub->add_option("--u-range", o->u_range_per_m,
-                  "half-range of tabulated u' (cycles/m; 0 = 2/λ; larger values are clamped to 2/λ, every "
-                  "larger shift being evanescent). Profiles always tabulate |u'| < 2/λ");
-  sub->add_option("--profile", o->profile, "profile CSV file (KIND profile)");
+  const std::vector<std::string> openings{"slit", "slits"}, rough{"rough"};
+  const std::vector<KindOption> specific = {
+      {sub->add_option("--sigma-h", o->sigma_h_m, "rough: height standard deviation (m)"), rough},
+      {sub->add_option("--corr-length", o->corr_length_m, "rough: height correlation length (m)"), rough},
+      {sub->add_option("--cos-incidence", o->cos_incidence, "rough: cosine of the incidence angle")->capture_default_str(),
+       rough},
+      {sub->add_option("--width", o->width_m, "slit, slits: slit width (m)")->capture_default_str(), openings},
+      {sub->add_option("--spacing", o->spacing_m, "slits: slit spacing, centre to centre (m)")->capture_default_str(),
+       {"slits"}},
+      {sub->add_option("--count", o->count, "slits: number of slits")
+           ->transform(wholeNumberValidator())
+           ->capture_default_str(),
+       {"slits"}},
+      {sub->add_option("--period", o->period_m, "grating: period (m)")->capture_default_str(), {"grating"}},
+      {sub->add_option("--modulation", o->modulation,
+                       "grating: phase modulation m: order q carries the efficiency J_q(m/2)^2")
+           ->capture_default_str(),
+       {"grating"}},
+      {sub->add_option("--extent", o->extent_m, "half-plane: tabulated distance past the edge (m, > 0; 0 = 20 λ)"),
+       {"half-plane"}},
+      {sub->add_option("--u-range", o->u_range_per_m,
+                       "half-range of tabulated u' (cycles/m; 0 = 2/λ; larger values are clamped to 2/λ, every "
+                       "larger shift being evanescent). Not for profile, which always tabulates |u'| < 2/λ"),
+       {"slit", "slits", "half-plane", "grating", "rough"}},
+      {sub->add_option("--profile", o->profile, "profile: the CSV file"), {"profile"}},
+  };
   sub->add_option("--csv", o->csv,
                   "write every cell as x_m,u_per_m,w to this CSV file (w = W; for a grating's line spectrum, "
-                  "the line weight divided by the line spacing)");
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)");
+                  "the line weight divided by the line spacing)")->check(outputPathValidator());
+  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->transform(wholeNumberValidator());
   sub->add_flag("--json", common.json, "print a JSON object instead of text");
-  return [o, &common]() {
+  return [o, &common, specific]() {
+    checkKindOptions(o->kind, specific);
     core::ThreadLimit limit(common.threads);
     if (!o->csv.empty()) checkOutputFiles({o->csv}, {o->profile});  // before the work; never the profile
     const auto table = makeTable(*o);

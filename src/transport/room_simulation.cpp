@@ -60,6 +60,8 @@ core::BandArray eyringT60(const room::Room& room, double speed_of_sound_m_s, con
 
 namespace {
 
+constexpr double kPilotBinS = 0.01;  ///< the pilot's histogram bins
+
 // When the room's energy has fallen by 60 dB, the latest over the bands, from a short pilot trace (rays
 // alone, 10 ms bins, up to max_length_s): the energy still in flight in the room, whose level is read
 // where it first drops below −60 dB of its peak, or else extrapolated to −60 dB from a least-squares
@@ -70,7 +72,7 @@ double pilotT60(const room::Room& room, const RoomGeometry& geometry, const Room
   to.rays = rays;
   to.seed = seed ^ 0x5eedf00dull;
   to.length_s = room.output.max_length_s;
-  to.bin_s = 0.01;
+  to.bin_s = kPilotBinS;
   to.skip_order = -1;
   to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
   to.air_m_per_m = sim.air_m_per_m;
@@ -178,7 +180,22 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   // Refuse work that would not end in reasonable time, before any of it starts: a lossless or tiny room
   // followed for max_length_s makes every ray bounce length·c / (mean free path) times.
   checkWorkload(room, sim, automatic ? room.output.max_length_s : sim.length_s, rays, automatic);
-  if (!automatic) histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
+  if (!automatic) {
+    histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
+  } else {
+    // The pilot histograms max_length_s in its own bins for every listener. Past the limit, histogramBins would
+    // name output.histogram_bin_s and the pilot's 10 ms, neither of which the user set: name what they did set.
+    const double cells = std::ceil(room.output.max_length_s / kPilotBinS) * nb * static_cast<double>(room.listeners.size());
+    if (!(cells <= kMaxHistogramCells)) {
+      std::ostringstream why;
+      why.precision(3);
+      why << "with no IR length set, the length is measured by a pilot trace over max_length_s ("
+          << room.output.max_length_s << " s), whose histograms for " << nb << " bands and " << room.listeners.size()
+          << " listener(s) in " << kPilotBinS << " s bins need " << cells << " cells, more than the limit of "
+          << kMaxHistogramCells << "; set output.ir_length_s (or ir's --length), or a shorter output.max_length_s";
+      throw core::InputError((room.file.empty() ? std::string("room") : room.file) + ": output.max_length_s", why.str());
+    }
+  }
   if (options.on_start) options.on_start();
   if (automatic) {
     // "auto": a pilot run measures the decay (Eyring misjudges non-diffuse rooms: a shoebox with an

@@ -4,11 +4,13 @@
 // are thrown as core::InputError and printed by main() as one line.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "diffray/core/atomic_file.h"
+#include "diffray/core/error.h"
 #include "diffray/room/room.h"
 
 namespace diffray::cli {
@@ -26,8 +28,18 @@ struct CommonOptions {
 inline constexpr double kMaxCount = 1e13;
 /// A count given as a double (2e6 accepted): a whole number in [1, kMaxCount], else core::InputError naming `option`.
 std::uint64_t wholeCount(const std::string& option, double v);
-/// The check every --seed option carries: digits only (a negative seed would wrap around in a std::uint64_t).
+/// The transform every --seed option carries (->transform, not ->check: it rewrites the text): digits only
+/// (a negative seed would wrap around in a std::uint64_t), at most 2^64 - 1 (CLI11 would clamp a larger one),
+/// leading zeros dropped (CLI11 would read "010" as octal).
 const CLI::Validator& seedValidator();
+/// The transform every integer option carries (->transform): a whole number, also written as 1e3 or 8.0 like
+/// --rays, within [lo, hi] (by default the int range); "2.5", "0x10" and "nan" are refused with one line naming
+/// the option, where CLI11 alone would say "Could not convert" (or, under CLI::Range, "not in range") and would
+/// read "010" as octal.
+CLI::Validator wholeNumberValidator(int lo = std::numeric_limits<int>::min(), int hi = std::numeric_limits<int>::max());
+/// The check every output-file option carries (-o, --csv, --plot, --spectrogram): a name given must not be empty
+/// (`--csv ""` would otherwise mean "no CSV", or the default name).
+const CLI::Validator& outputPathValidator();
 
 /// The largest output gain in dB, either way, a command accepts (door and auralize --gain): ±120 dB spans
 /// float32's useful range many times over; beyond it an output is all zeros or all overflow.
@@ -52,6 +64,10 @@ void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<s
 
 /// A command's set of output files, replaced together on commit() (core/atomic_file.h).
 using core::OutputFiles;
+
+/// The message of `e` without its leading "where: ", to rethrow it naming what the user gave (a file, an option)
+/// instead of an internal name (a temporary file, "resample").
+std::string reasonOf(const core::InputError& e);
 
 /// `path` with its extension replaced by `ext` (".json").
 std::string withExtension(const std::string& path, const std::string& ext);
