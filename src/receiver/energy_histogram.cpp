@@ -6,7 +6,7 @@ namespace diffray::receiver {
 
 double EnergyHistogram::standardError(int band, int bin) const {
   if (chunks_ < 2) return 0.0;
-  const std::size_t i = std::size_t(band) * bins_ + bin;
+  const std::size_t i = index(band, bin);
   const double n = static_cast<double>(chunks_);
   const double mean = sum_[i] / n;
   const double var = (sum_sq_[i] / n - mean * mean) * n / (n - 1.0);  // of one chunk total

@@ -32,14 +32,23 @@ constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.68
 
 // Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
 using Pair = double __attribute__((vector_size(16)));
-// Whether either lane's sign bit is set, and whether some lane of a four-float comparison is true: one
+// The lanes' sign bits (bit 0: lane 0), whether either is set, and whether some lane of a four-float comparison is true: one
 // movemask each with SSE2, else the lanes one by one (other targets).
 using QuadMask = std::int32_t __attribute__((vector_size(16)));
-inline bool anySignBit(Pair v) {
+inline int signBits(Pair v) {
 #if defined(__SSE2__)
-  return _mm_movemask_pd(v) != 0;
+  return _mm_movemask_pd(v);
 #else
-  return std::signbit(v[0]) || std::signbit(v[1]);
+  return (std::signbit(v[0]) ? 1 : 0) | (std::signbit(v[1]) ? 2 : 0);
+#endif
+}
+inline bool anySignBit(Pair v) { return signBits(v) != 0; }
+// Per lane, a < b ? a : b (so b when either is NaN): one minpd with SSE2.
+inline Pair lesser(Pair a, Pair b) {
+#if defined(__SSE2__)
+  return _mm_min_pd(a, b);
+#else
+  return a < b ? a : b;
 #endif
 }
 inline bool anyLane(QuadMask m) {
@@ -109,13 +118,11 @@ struct Tracer {
   template <int NB, class Energy>
   void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
              const Energy& energy, double scale, bool skip, std::uint64_t skip_listeners = 0) const {
-    const int nb = NB > 0 ? NB : bands;
     // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
     // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
     // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
     // the three signed excesses is then negative (each with a margin above its rounding, so that the test
     // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
-    const std::size_t n = spheres.size();
     if (pair_count == 0) return;
     const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
     const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
@@ -129,34 +136,46 @@ struct Tracer {
     };
     // The least excess per lane (a NaN excess is never taken: it fails the comparison).
     const Pair one = {1.0, 1.0};
-    Pair closest = excessOf(listener_pairs[0]);
-    closest = closest < one ? closest : one;
-    for (int k = 1; k < pair_count; ++k) {
-      const Pair excess = excessOf(listener_pairs[k]);
-      closest = excess < closest ? excess : closest;
-    }
+    Pair closest = lesser(excessOf(listener_pairs[0]), one);
+    for (int k = 1; k < pair_count; ++k) closest = lesser(excessOf(listener_pairs[k]), closest);
     if (!anySignBit(closest)) return;  // every excess ≥ 0 (a −0 goes on: chordSpan decides)
-    // Copies: chordSpan takes addresses, which would otherwise keep the loop's pos and dir in memory.
+    // Some sphere may be near (one segment in ~20 on the shoebox): the pairs again, and chordSpan only for
+    // the lanes whose excess is negative. Copies: chordSpan takes addresses, which would otherwise keep the
+    // loop's pos and dir in memory.
     const double o[3] = {pos.x(), pos.y(), pos.z()}, d[3] = {dir.x(), dir.y(), dir.z()};
-    for (std::size_t l = 0; l < n; ++l) {
-      double t_in, t_out;
-      if (!spheres[l].chordSpan(o, d, 0.0, t_end, t_in, t_out)) continue;
-      ++acc.crossings[l];
-      if (skip || (l < 64 && (skip_listeners >> l & 1u))) continue;
-      const double s_mid = path_m + 0.5 * (t_in + t_out);
-      const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
-      if (bin < 0) continue;
-      // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
-      const double w = scale * spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
-      // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
-      // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
-      // error below 2e-8, no exp per band in the hot loop.
-      const double ds = s_mid - air_centre_m[bin];
-      const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
-      for (int b = 0; b < nb; ++b) {
-        const double x = opt.air_m_per_m[b] * ds;
-        acc.listeners[l].add(b, bin, energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w);
-      }
+    for (int k = 0; k < pair_count; ++k) {
+      const int near = signBits(excessOf(listener_pairs[k]));
+      if (near & 1) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k), o, d, t_end, path_m, energy, scale, skip,
+                                      skip_listeners);
+      if (near & 2) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k) + 1, o, d, t_end, path_m, energy, scale,
+                                      skip, skip_listeners);
+    }
+  }
+
+  // score's part for listener l, whose sphere the segment may cross.
+  template <int NB, class Energy>
+  void scoreListener(RoomTraceResult& acc, std::size_t l, const double* o, const double* d, double t_end,
+                     double path_m, const Energy& energy, double scale, bool skip,
+                     std::uint64_t skip_listeners) const {
+    const int nb = NB > 0 ? NB : bands;
+    double t_in, t_out;
+    if (!spheres[l].chordSpan(o, d, 0.0, t_end, t_in, t_out)) return;
+    ++acc.crossings[l];
+    if (skip || (l < 64 && (skip_listeners >> l & 1u))) return;
+    const double s_mid = path_m + 0.5 * (t_in + t_out);
+    const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
+    if (bin < 0) return;
+    // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
+    const double w = scale * spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
+    // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
+    // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
+    // error below 2e-8, no exp per band in the hot loop.
+    const double ds = s_mid - air_centre_m[bin];
+    const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
+    double* row = acc.listeners[l].openRow(bin);
+    for (int b = 0; b < nb; ++b) {
+      const double x = opt.air_m_per_m[b] * ds;
+      row[b] += energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
     }
   }
 
