@@ -455,9 +455,12 @@ struct Tracer {
         return;
       }
       path_m += t_hit;
-      pos += t_hit * dir;
       const TrianglePlane& tri = geometry.triangle(hit.triangle);
-      if (project) pos -= (tri.normal.dot(pos) - tri.offset) * tri.normal;
+      const double dn = tri.normal.dot(dir);
+      // The projection's distance off the plane, (n·pos − offset) + t·(n·dir) of the old pos (so the chain
+      // from Embree's t is short), taken off below together with the offset off the surface.
+      const double off_plane = project ? tri.normal.dot(pos) - tri.offset + t_hit * dn : 0.0;
+      pos += t_hit * dir;
       std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
       if (skip_after_floor) {
         after_floor = skip_after_floor;
@@ -465,9 +468,9 @@ struct Tracer {
       }
       const int m = tri.material;
       // The normal facing the ray is side·n; the offsets off the surface below are ±eps_m along it.
-      const double dn = tri.normal.dot(dir);
       const double side = dn < 0.0 ? 1.0 : -1.0;
       if (special[hit.triangle]) {  // the cold cases: an occluder, an opening, a surface absorbing all
+        pos -= off_plane * tri.normal;
         const Vec3 n_in = side * tri.normal;
         if (opt.occluders && s.diffractions < opt.max_diffractions) {
           if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
@@ -504,11 +507,11 @@ struct Tracer {
           dir -= (2.0 * dn) * tri.normal;
           if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
         }
-        pos += (side * eps_m) * tri.normal;  // off the surface, on the side the ray now travels
+        pos += (side * eps_m - off_plane) * tri.normal;  // off the surface, on the side the ray now travels
       } else {
         weigh<NB>(e, materials.w_transmit, materials.octave_transmit, m);
         specular_chain = false;
-        pos -= (side * eps_m) * tri.normal;
+        pos -= (side * eps_m + off_plane) * tri.normal;
       }
       if (!roulette<NB>(acc, rng, e, threshold_e, threshold4)) return;
     }
