@@ -624,6 +624,7 @@ expect_clean "--seed above 2^64-1"     "out.csv*" "--seed: must be at most 18446
 expect_clean "validate --order 2.5"    "out.csv*" "--order: must be a whole number" validate shoebox-ism --order 2.5 --rays 1000 "$csv"
 expect_clean "validate --floor 0.7"    "out.csv*" "--floor: must be a whole number" validate door-room --floor 0.7 --rays 1000 "$csv"
 expect_clean "ir --ism-order 2.5"      "out.*" "--ism-order: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 1000 --ism-order 2.5
+expect_clean "ir --threads 1e-400"     "out.*" "--threads: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 1000 --threads 1e-400
 expect_clean "door --steps 2.5"        "door.*" "--steps: must be a whole number" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --steps 2.5
 expect_clean "wdf --count 2.5"         "out.csv*" "--count: must be a whole number" wdf slits --count 2.5 "$csv"
 expect_clean "wdf --count 0x3"         "out.csv*" "--count: must be a whole number" wdf slits --count 0x3 "$csv"

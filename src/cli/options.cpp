@@ -44,8 +44,9 @@ CLI::Validator wholeNumberValidator(int lo, int hi) {
         // Decimal only: C's strtol, which CLI11 uses for integers, reads "010" as 8 and "0x10" as 16.
         double v = 0.0;
         if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos ||
-            !CLI::detail::lexical_cast(text, v) || (std::isfinite(v) && std::floor(v) != v))
-          return "must be a whole number (e.g. 8 or 1e3), got " + text;
+            !CLI::detail::lexical_cast(text, v) || (std::isfinite(v) && std::floor(v) != v) ||
+            (v == 0.0 && text.substr(0, text.find_first_of("eE")).find_first_of("123456789") != std::string::npos))
+          return "must be a whole number (e.g. 8 or 1e3), got " + text;  // the last test: 1e-400 underflows to 0
         if (!(v >= lo && v <= hi))  // 1e400 (infinite as a double) too
           return "must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + text;
         text = std::to_string(static_cast<int>(v));  // plain digits for CLI11's integer conversion

@@ -183,17 +183,16 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   if (!automatic) {
     histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
   } else {
-    // The pilot histograms max_length_s in its own bins for every listener. Past the limit, histogramBins would
-    // name output.histogram_bin_s and the pilot's 10 ms, neither of which the user set: name what they did set.
-    const double cells = std::ceil(room.output.max_length_s / kPilotBinS) * nb * static_cast<double>(room.listeners.size());
-    if (!(cells <= kMaxHistogramCells)) {
-      std::ostringstream why;
-      why.precision(3);
-      why << "with no IR length set, the length is measured by a pilot trace over max_length_s ("
-          << room.output.max_length_s << " s), whose histograms for " << nb << " bands and " << room.listeners.size()
-          << " listener(s) in " << kPilotBinS << " s bins need " << cells << " cells, more than the limit of "
-          << kMaxHistogramCells << "; set output.ir_length_s (or ir's --length), or a shorter output.max_length_s";
-      throw core::InputError((room.file.empty() ? std::string("room") : room.file) + ": output.max_length_s", why.str());
+    // The pilot histograms max_length_s in its own bins for every listener. Past the limit, histogramBins
+    // names output.histogram_bin_s and the pilot's 10 ms, neither of which the user set: name what they did.
+    try {
+      histogramBins(room.output.max_length_s, kPilotBinS, nb, room.listeners.size());
+    } catch (const core::InputError& e) {
+      const std::string what = e.what(), reason = e.where().empty() ? what : what.substr(e.where().size() + 2);
+      throw core::InputError((room.file.empty() ? std::string("room") : room.file) + ": output.max_length_s",
+                             "with no IR length set, a pilot trace over max_length_s measures the length, and " +
+                                 reason.substr(0, reason.find("; use")) +
+                                 "; set output.ir_length_s (or ir's --length), or a shorter output.max_length_s");
     }
   }
   if (options.on_start) options.on_start();

@@ -459,7 +459,7 @@ struct Tracer {
       const double dn = tri.normal.dot(dir);
       // The projection's distance off the plane, (n·pos − offset) + t·(n·dir) of the old pos (so the chain
       // from Embree's t is short), taken off below together with the offset off the surface.
-      const double off_plane = project ? tri.normal.dot(pos) - tri.offset + t_hit * dn : 0.0;
+      double off_plane = project ? tri.normal.dot(pos) - tri.offset + t_hit * dn : 0.0;
       pos += t_hit * dir;
       std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
       if (skip_after_floor) {
@@ -471,6 +471,7 @@ struct Tracer {
       const double side = dn < 0.0 ? 1.0 : -1.0;
       if (special[hit.triangle]) {  // the cold cases: an occluder, an opening, a surface absorbing all
         pos -= off_plane * tri.normal;
+        off_plane = 0.0;  // applied: a surface event below must not take it off again
         const Vec3 n_in = side * tri.normal;
         if (opt.occluders && s.diffractions < opt.max_diffractions) {
           if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
