@@ -164,9 +164,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
   addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
   sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->transform(seedValidator())->capture_default_str();
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
-      ->transform(wholeNumberValidator())
-      ->capture_default_str();
+  addThreadsOption(sub, common.threads);
   sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file")
       ->check(outputPathValidator());
   sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)")

@@ -145,9 +145,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
   CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
                                   ->transform(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
-      ->transform(wholeNumberValidator())
-      ->capture_default_str();
+  addThreadsOption(sub, common.threads);
   sub->add_option("--gain", opts->gain_db, "output gain in dB")->check(gainDbValidator());
   sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)")
       ->check(outputPathValidator());

@@ -84,9 +84,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       sub->add_option("--seed", common.seed, "random seed (default: the room file's output.seed); the same seed "
                                              "gives the same IR")
           ->transform(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
-      ->transform(wholeNumberValidator())
-      ->capture_default_str();
+  addThreadsOption(sub, common.threads);
   sub->add_option("--ism-order", opts->ism_order, "image-source order (default: the room file's; -1 = rays only)")
       ->transform(wholeNumberValidator(-1, 50));
   sub->add_option("--length", opts->length_s, "IR length in s (default: the room file's, or until -60 dB)")

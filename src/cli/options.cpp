@@ -77,6 +77,12 @@ const CLI::Validator& gainDbValidator() {
   return check;
 }
 
+void addThreadsOption(CLI::App* sub, int& threads) {
+  sub->add_option("--threads", threads, "worker threads (0 = all cores)")
+      ->transform(wholeNumberValidator())
+      ->capture_default_str();
+}
+
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help) {
   sub->add_option_function<double>(
          "--rays",

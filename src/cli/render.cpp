@@ -53,7 +53,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
   auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
   sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
   sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)")->transform(seedValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->transform(wholeNumberValidator());
+  addThreadsOption(sub, common.threads);
   sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");
   sub->add_option("--float", o->float_format, "linear float image beside the PNG: pfm (default) or exr (OpenEXR)")
       ->check(CLI::IsMember({"pfm", "exr"}));

@@ -131,9 +131,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--seed", common.seed, "random seed; the same seed gives the same result")
       ->transform(seedValidator())
       ->capture_default_str();
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
-      ->transform(wholeNumberValidator())
-      ->capture_default_str();
+  addThreadsOption(sub, common.threads);
   sub->add_flag("--json", common.json, "print one JSON object per case instead of a table");
   sub->add_flag("--verbose", opts->verbose,
                 "also print each case's extra figures (energy balance, per-frequency errors, table sizes)");

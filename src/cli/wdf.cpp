@@ -136,7 +136,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--csv", o->csv,
                   "write every cell as x_m,u_per_m,w to this CSV file (w = W; for a grating's line spectrum, "
                   "the line weight divided by the line spacing)")->check(outputPathValidator());
-  sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")->transform(wholeNumberValidator());
+  addThreadsOption(sub, common.threads);
   sub->add_flag("--json", common.json, "print a JSON object instead of text");
   return [o, &common, specific]() {
     checkKindOptions(o->kind, specific);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -32,8 +31,8 @@ constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.68
 
 // Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
 using Pair = double __attribute__((vector_size(16)));
-// The lanes' sign bits (bit 0: lane 0), whether either is set, and whether some lane of a four-float comparison is true: one
-// movemask each with SSE2, else the lanes one by one (other targets).
+// The lanes' sign bits (bit 0: lane 0), whether either is set, and whether some lane of a four-float
+// comparison is true: one movemask each with SSE2, else the lanes one by one (other targets).
 using QuadMask = std::int32_t __attribute__((vector_size(16)));
 inline int signBits(Pair v) {
 #if defined(__SSE2__)
@@ -194,8 +193,7 @@ struct Tracer {
     RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
     return cast(o, d, context, rh);
   }
-  // `rh`: a ray from makeRayHit (tnear 0), reused along a path: Embree leaves its tnear, time, mask, id and
-  // flags as they are, so only the origin, direction, tfar and the hit's ids are set here.
+  // `rh`: a ray from makeRayHit (tnear 0), re-aimed here for each segment of a path (aimRayHit).
   SegmentHit cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context, RTCRayHit& rh) const {
     SegmentHit h;
     const RTCScene scene = geometry.embreeScene();
@@ -205,12 +203,7 @@ struct Tracer {
       h.triangle = g.valid() ? g.triangle : -1;
       return h;
     }
-    rh.ray.org_x = static_cast<float>(o.x()), rh.ray.org_y = static_cast<float>(o.y());
-    rh.ray.org_z = static_cast<float>(o.z());
-    rh.ray.dir_x = static_cast<float>(d.x()), rh.ray.dir_y = static_cast<float>(d.y());
-    rh.ray.dir_z = static_cast<float>(d.z());
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    geometry::aimRayHit(rh, o, d);
     rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.t = rh.ray.tfar;

@@ -51,6 +51,9 @@ const CLI::Validator& gainDbValidator();
 /// Adds --rays N to `sub`: a whole number >= 1, also written as 2e6, stored in `target`.
 void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help);
 
+/// Adds --threads N to `sub` (worker threads, 0 = all cores; a whole number, read as decimal).
+void addThreadsOption(CLI::App* sub, int& threads);
+
 /// Adds --diffraction none|wbsdf|utd and --diffraction-order N (1–8) to `sub`.
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
 

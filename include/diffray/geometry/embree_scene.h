@@ -13,22 +13,30 @@ namespace diffray::geometry {
 
 /// An RTCRayHit ready for rtcIntersect1: the ray in float, no hit yet. Inline: hot loops call Embree
 /// directly (transport/room_tracer.cpp) as well as through EmbreeScene::intersect.
-inline RTCRayHit makeRayHit(const core::Vec3& origin, const core::Vec3& dir, double tnear, double tfar) {
-  RTCRayHit rh;
+/// Points an RTCRayHit anew: origin and direction in float, tfar = ∞, no hit. rtcIntersect1 writes only
+/// tfar and the hit, so a ray from makeRayHit can be re-aimed so along a path (its tnear, time, mask, id and
+/// flags stay as made).
+inline void aimRayHit(RTCRayHit& rh, const core::Vec3& origin, const core::Vec3& dir) {
   rh.ray.org_x = static_cast<float>(origin.x());
   rh.ray.org_y = static_cast<float>(origin.y());
   rh.ray.org_z = static_cast<float>(origin.z());
   rh.ray.dir_x = static_cast<float>(dir.x());
   rh.ray.dir_y = static_cast<float>(dir.y());
   rh.ray.dir_z = static_cast<float>(dir.z());
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+inline RTCRayHit makeRayHit(const core::Vec3& origin, const core::Vec3& dir, double tnear, double tfar) {
+  RTCRayHit rh;
+  aimRayHit(rh, origin, dir);
   rh.ray.tnear = static_cast<float>(tnear);
-  rh.ray.tfar = tfar > 3e38 ? std::numeric_limits<float>::infinity() : static_cast<float>(tfar);
+  if (!(tfar > 3e38)) rh.ray.tfar = static_cast<float>(tfar);
   rh.ray.time = 0.0f;
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   return rh;
 }
 
