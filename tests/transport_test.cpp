@@ -199,12 +199,17 @@ TEST(TransportIntersection, EmbreeAndBruteForceMatchAnalyticRectangles) {
   std::uniform_int_distribution<int> pick(0, static_cast<int>(defs.size()) - 1);
   int hits = 0, bad_embree = 0, bad_brute = 0, disagree_embree = 0, disagree_brute = 0, pair_mismatch = 0;
   std::vector<int> per_object(defs.size(), 0);
+  std::vector<Vec3> origins, dirs;
+  std::vector<RefHit> refs;
   for (int i = 0; i < rays; ++i) {
     const Vec3 o = 4.0 * randomUnit(rng);
     const Def& aim = defs[pick(rng)];
     const Vec3 target = aim.frame.origin + unit(rng) * aim.hx * aim.frame.ex + unit(rng) * aim.hy * aim.frame.ey;
     const Vec3 d = (target - o).normalized();
     const RefHit ref = analyticHit(rects, o, d);
+    origins.push_back(o);
+    dirs.push_back(d);
+    refs.push_back(ref);
     if (ref.object >= 0) {
       ++hits;
       ++per_object[ref.object];
@@ -240,6 +245,51 @@ TEST(TransportIntersection, EmbreeAndBruteForceMatchAnalyticRectangles) {
     }
     if (he.object != hb.object) ++pair_mismatch;
   }
+  // The same rays in Embree's packets (the tracer's path): one rtcIntersect16 where the CPU has it, and
+  // two rtcIntersect8 halves on any CPU, with every third lane inactive (its result must not be used, so
+  // it is not checked). Same tolerance as the single rays.
+  const auto* es = embree->embree();
+  int bad_packet = 0, checked = 0;
+  for (int by8 = 0; by8 < 2; ++by8) {
+    for (int first = 0; first + dg::RayPacket::kSize <= rays; first += dg::RayPacket::kSize) {
+      dg::RayPacket packet;
+      dg::HitPacket packet_hits;
+      for (int k = 0; k < dg::RayPacket::kSize; ++k) {
+        const Vec3& o = origins[first + k];
+        const Vec3& d = dirs[first + k];
+        packet.org_x[k] = static_cast<float>(o.x());
+        packet.org_y[k] = static_cast<float>(o.y());
+        packet.org_z[k] = static_cast<float>(o.z());
+        packet.dir_x[k] = static_cast<float>(d.x());
+        packet.dir_y[k] = static_cast<float>(d.y());
+        packet.dir_z[k] = static_cast<float>(d.z());
+        packet.tnear[k] = 0.0f;
+        packet.active[k] = (first + k) % 3 == 2 ? 0 : -1;
+      }
+      if (by8) es->intersectPacketBy8(packet, packet_hits);
+      else es->intersectPacket(packet, packet_hits);
+      for (int k = 0; k < dg::RayPacket::kSize; ++k) {
+        if (!packet.active[k]) continue;
+        ++checked;
+        dg::Hit h;
+        h.object = packet_hits.object[k];
+        h.t = packet_hits.t[k];
+        const RefHit& ref = refs[first + k];
+        const bool ok = h.object == ref.object &&
+                        (ref.object < 0 || std::abs(h.t - ref.t) <= (1e-4 + 16.0 * 0x1.0p-24 / ref.cos) * ref.t);
+        const bool edge = (ref.object >= 0 && std::abs(ref.edge) <= 1e-5) ||
+                          (h.object >= 0 && edgeDistanceOfHit(rects, h.object, origins[first + k],
+                                                              dirs[first + k], h.t) <= 1e-5);
+        if (!ok && !edge) {
+          ++bad_packet;
+          ADD_FAILURE() << (by8 ? "rtcIntersect8 halves" : "packet") << ": ray " << first + k << " object "
+                        << h.object << " t " << h.t << " vs analytic " << ref.object << " t " << ref.t;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(bad_packet, 0);
+  EXPECT_GT(checked, rays);  // both packet paths saw two thirds of the rays each
   EXPECT_EQ(bad_embree, 0);
   EXPECT_EQ(bad_brute, 0);
   EXPECT_LE(disagree_embree, rays / 1000);

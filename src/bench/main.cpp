@@ -1,7 +1,8 @@
 // diffray_bench: prints one JSON line per benchmark, each with the anchor it is compared against,
 // measured in the same run (tools/bench runs it).
 //   transport:   diffray's signed-energy tracer vs a plain rtcIntersect1 loop over the same scene, with the
-//                same number of intersection queries per path and the same thread count.
+//                same number of intersection queries per path and the same thread count (the target's
+//                anchor), and vs the same queries in Embree's coherent 16-wide packets, as diffray issues them.
 //   room:        the acoustic tracer vs a plain rtcIntersect1 loop on each shipped room (room_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
@@ -116,6 +117,61 @@ double plainEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
   return static_cast<double>(chunks * chunk) / s;
 }
 
+// A second anchor: the same queries as Embree's 16-wide packets with the coherent-ray hint, as diffray's
+// tracer issues them (geometry::EmbreeScene::intersectPacket): Embree at its fastest on these rays, so
+// diffray's own cost per path shows beside the ratio the target is set on.
+double packetEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
+  RTCScene scene = b.scene.embree()->handle();
+  const auto t0 = Clock::now();
+  const std::uint64_t chunk = 16384;
+  const std::uint64_t chunks = paths / chunk;
+  const double hits = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint64_t>(0, chunks, 1), 0.0,
+      [&](const tbb::blocked_range<std::uint64_t>& r, double acc) {
+        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+          core::Rng rng(7, c);
+          RTCIntersectContext ctx;
+          rtcInitIntersectContext(&ctx);
+          ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          alignas(64) int valid[16];
+          std::fill(valid, valid + 16, -1);
+          for (std::uint64_t i = 0; i < chunk; i += 16) {
+            alignas(64) RTCRayHit16 rh;
+            for (int k = 0; k < 16; ++k) {
+              rh.ray.org_x[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
+              rh.ray.org_y[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
+              rh.ray.org_z[k] = -0.5f;
+              rh.ray.dir_x[k] = 0.0f;
+              rh.ray.dir_y[k] = 0.0f;
+              rh.ray.dir_z[k] = 1.0f;
+              rh.ray.tnear[k] = 0.0f;
+              rh.ray.tfar[k] = INFINITY;
+              rh.ray.mask[k] = 0xFFFFFFFFu;
+              rh.ray.flags[k] = 0;
+              rh.ray.time[k] = 0.0f;
+              rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect16(valid, scene, &ctx, &rh);
+            for (int k = 0; k < 16; ++k) {
+              rh.ray.org_z[k] = 0.0f;
+              rh.ray.dir_x[k] = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
+              rh.ray.dir_z[k] = std::sqrt(1.0f - rh.ray.dir_x[k] * rh.ray.dir_x[k]);
+              rh.ray.tnear[k] = 1e-6f;
+              rh.ray.tfar[k] = INFINITY;
+              rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect16(valid, scene, &ctx, &rh);
+            for (int k = 0; k < 16; ++k) acc += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
+          }
+        }
+        return acc;
+      },
+      std::plus<double>(), tbb::simple_partitioner());
+  const double s = secondsSince(t0);
+  if (hits < 0.5 * static_cast<double>(chunks * chunk)) std::cerr << "bench: packet anchor rays missed the screen\n";
+  return static_cast<double>(chunks * chunk) / s;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -126,10 +182,12 @@ void benchTransport(std::uint64_t paths) {
   const int threads = core::ThreadLimit::current();
   plainEmbreeRaysPerSecond(b, paths / 8);  // warm-up
   // Alternate the anchor and diffray three times and keep the medians: the machine's speed drifts.
-  std::vector<double> embree_runs, diffray_runs;
+  packetEmbreeRaysPerSecond(b, paths / 8);
+  std::vector<double> embree_runs, packet_runs, diffray_runs;
   double segments_per_path = 0.0;
   for (int rep = 0; rep < 3; ++rep) {
     embree_runs.push_back(plainEmbreeRaysPerSecond(b, paths));
+    packet_runs.push_back(packetEmbreeRaysPerSecond(b, paths));
     transport::TraceOptions to;
     to.rays = paths;
     to.seed = static_cast<std::uint64_t>(rep + 1);
@@ -138,7 +196,7 @@ void benchTransport(std::uint64_t paths) {
     diffray_runs.push_back(static_cast<double>(tr.rays) / secondsSince(t0));
     segments_per_path = static_cast<double>(tr.segments) / static_cast<double>(tr.rays);
   }
-  const double embree = median(embree_runs), diffray = median(diffray_runs);
+  const double embree = median(embree_runs), packets = median(packet_runs), diffray = median(diffray_runs);
   nlohmann::json j{{"bench", "transport"},
                    {"scene", "slit-fraunhofer"},
                    {"paths", paths},
@@ -146,6 +204,8 @@ void benchTransport(std::uint64_t paths) {
                    {"embree_rays_per_s", embree},
                    {"diffray_rays_per_s", diffray},
                    {"ratio", diffray / embree},
+                   {"embree_packet16_rays_per_s", packets},
+                   {"ratio_vs_packets", diffray / packets},
                    {"threads", threads}};
   std::cout << j.dump() << std::endl;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The Embree 3 back end: an RAII device and scene built once from a Mesh (one triangle geometry).
-// intersect() calls rtcIntersect1 with an RTCIntersectContext and is thread-safe. Embree works in float:
-// callers that need more than ~1e-7 relative precision (every WBSDF hit does, design.md §1) recompute the
-// hit point in double from the object's plane. Errors reported by Embree's callback become InternalError.
+// intersect() calls rtcIntersect1 with an RTCIntersectContext, intersectPacket() Embree's 16- or 8-wide
+// packets; both are thread-safe. Embree works in float: callers that need more than ~1e-7 relative precision
+// (every WBSDF hit does, design.md §1) recompute the hit point in double from the object's plane. Errors
+// reported by Embree's callback become InternalError.
 #include <embree3/rtcore.h>
 
 #include <limits>
@@ -11,8 +12,6 @@
 
 namespace diffray::geometry {
 
-/// An RTCRayHit ready for rtcIntersect1: the ray in float, no hit yet. Inline: hot loops call Embree
-/// directly (transport/room_tracer.cpp) as well as through EmbreeScene::intersect.
 /// Points an RTCRayHit anew: origin and direction in float, tfar = ∞, no hit. rtcIntersect1 writes only
 /// tfar and the hit, so a ray from makeRayHit can be re-aimed so along a path (its tnear, time, mask, id and
 /// flags stay as made).
@@ -28,6 +27,8 @@ inline void aimRayHit(RTCRayHit& rh, const core::Vec3& origin, const core::Vec3&
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
+/// An RTCRayHit ready for rtcIntersect1: the ray in float, no hit yet. Inline: hot loops call Embree
+/// directly (transport/room_tracer.cpp) as well as through EmbreeScene::intersect.
 inline RTCRayHit makeRayHit(const core::Vec3& origin, const core::Vec3& dir, double tnear, double tfar) {
   RTCRayHit rh;
   aimRayHit(rh, origin, dir);
@@ -48,8 +49,12 @@ class EmbreeScene : public Intersector {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   Hit intersect(const Ray& ray) const override;
-  /// rtcIntersect8 (Embree's packet traversal, faster for the coherent rays of one source).
+  /// Embree's packet traversal, faster than single rays for the coherent rays of one source: one
+  /// rtcIntersect16 where Embree traces 16-wide packets natively (AVX-512), else intersectPacketBy8.
   void intersectPacket(const RayPacket& rays, HitPacket& hits) const override;
+  /// The packet as two rtcIntersect8 halves (public so tests cover it on any CPU).
+  void intersectPacketBy8(const RayPacket& rays, HitPacket& hits) const;
+  bool nativePacket16() const { return native_packet16_; }
 
   RTCScene handle() const { return scene_; }  ///< for benchmarks that call rtcIntersect1 directly
 
@@ -57,6 +62,7 @@ class EmbreeScene : public Intersector {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<int> object_of_triangle_;
+  bool native_packet16_ = false;
 };
 
 /// Reference back end for tests: loops over every triangle (Möller–Trumbore, double precision).

@@ -46,11 +46,11 @@ struct Hit {
 /// Up to kPacket rays in float, structure-of-arrays, as Embree's packet API takes them. Lanes with
 /// active = 0 are ignored.
 struct RayPacket {
-  static constexpr int kSize = 8;
-  alignas(32) float org_x[kSize], org_y[kSize], org_z[kSize];
-  alignas(32) float dir_x[kSize], dir_y[kSize], dir_z[kSize];
-  alignas(32) float tnear[kSize];
-  alignas(32) int active[kSize];  ///< −1 active, 0 inactive (Embree's valid mask)
+  static constexpr int kSize = 16;
+  alignas(64) float org_x[kSize], org_y[kSize], org_z[kSize];
+  alignas(64) float dir_x[kSize], dir_y[kSize], dir_z[kSize];
+  alignas(64) float tnear[kSize];
+  alignas(64) int active[kSize];  ///< −1 active, 0 inactive (Embree's valid mask)
 };
 
 /// The nearest hit of each lane: object < 0 where the ray escaped; t is Embree's (float) distance.
