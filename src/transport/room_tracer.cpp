@@ -3,14 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/rng.h"
 #include "diffray/geometry/embree_scene.h"
+#include "diffray/transport/room_lanes.h"
 #include "diffray/transport/room_materials.h"
 
 namespace diffray::transport {
@@ -28,63 +26,6 @@ constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
 // lowers its noise, as the optical tracer does for its first scattering (transport/tracer.cpp).
 constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.6844301295853426,
                                     0.6031687406857283, 0.5315553977157913};
-
-// Two doubles operated on together (GCC/Clang vector extension: an SSE2 register on x86-64).
-using Pair = double __attribute__((vector_size(16)));
-// The lanes' sign bits (bit 0: lane 0), whether either is set, and whether some lane of a four-float
-// comparison is true: one movemask each with SSE2, else the lanes one by one (other targets).
-using QuadMask = std::int32_t __attribute__((vector_size(16)));
-inline int signBits(Pair v) {
-#if defined(__SSE2__)
-  return _mm_movemask_pd(v);
-#else
-  return (std::signbit(v[0]) ? 1 : 0) | (std::signbit(v[1]) ? 2 : 0);
-#endif
-}
-inline bool anySignBit(Pair v) { return signBits(v) != 0; }
-// Per lane, a < b ? a : b (so b when either is NaN): one minpd with SSE2.
-inline Pair lesser(Pair a, Pair b) {
-#if defined(__SSE2__)
-  return _mm_min_pd(a, b);
-#else
-  return a < b ? a : b;
-#endif
-}
-inline bool anyLane(QuadMask m) {
-#if defined(__SSE2__)
-  return _mm_movemask_ps(reinterpret_cast<__m128>(m)) != 0;
-#else
-  return (m[0] | m[1] | m[2] | m[3]) != 0;
-#endif
-}
-
-// The band energies the bounce loop carries: Octaves for octave bands (NB = 8), else a BandArray.
-template <int NB>
-struct EnergyOf {
-  using type = core::BandArray;
-};
-template <>
-struct EnergyOf<8> {
-  using type = Octaves;
-};
-// The bounce loop's energies from a Path's (Octaves: relative to `scale`, so that float's range covers any
-// source power), and back.
-template <int NB>
-typename EnergyOf<NB>::type carried(const core::BandArray& e, double scale) {
-  if constexpr (NB == 8) {
-    core::BandArray relative = e;
-    for (int b = 0; b < 8; ++b) relative[b] /= scale;
-    return toOctaves(relative);
-  } else {
-    return e;
-  }
-}
-const core::BandArray& asBands(const core::BandArray& e, double) { return e; }
-core::BandArray asBands(const Octaves& e, double scale) {
-  core::BandArray a = toBands(e);
-  for (int b = 0; b < 8; ++b) a[b] *= scale;
-  return a;
-}
 
 struct Tracer {
   const room::Room& room;
