@@ -121,3 +121,30 @@ TEST(ValidateParams, RejectsParametersACaseDoesNotTake) {
   EXPECT_THROW(dv::resolveParams(*info, {{"width", {std::nan("")}}}), std::runtime_error);
   EXPECT_NO_THROW(dv::resolveParams(*info, {{"width", {2e-4}}}));
 }
+
+// A case reads a single-valued parameter's first value and an int parameter truncated: several values, or a
+// fraction, would silently become something else, so resolveParams refuses them by the parameter's flags.
+TEST(ValidateParams, OneValueUnlessAListWholeWhereCounted) {
+  for (const dv::CaseInfo& c : dv::cases())
+    for (const dv::ParamSpec& p : c.params) {
+      // Several defaults make a list: a parameter whose defaults are a sweep must accept one.
+      if (p.defaults.size() > 1) {
+        EXPECT_TRUE(p.list) << c.name << " --" << p.name;
+      }
+      if (p.whole) {
+        for (double v : p.defaults) EXPECT_EQ(std::floor(v), v) << c.name << " --" << p.name;
+      }
+    }
+  const dv::CaseInfo* slit = dv::findCase("slit-fraunhofer");
+  ASSERT_NE(slit, nullptr);
+  EXPECT_THROW(dv::resolveParams(*slit, {{"width", {1e-4, 2e-4}}}), std::runtime_error);
+  EXPECT_THROW(dv::resolveParams(*slit, {{"bins", {150.5}}}), std::runtime_error);
+  EXPECT_EQ(dv::resolveParams(*slit, {{"bins", {1.5e2}}}).at("bins"), std::vector<double>{150.0});
+  const dv::CaseInfo* door = dv::findCase("door-rs");
+  ASSERT_NE(door, nullptr);
+  EXPECT_EQ(dv::resolveParams(*door, {{"freq", {125, 250}}}).at("freq").size(), 2u);
+  const dv::CaseInfo* ism = dv::findCase("shoebox-ism");
+  ASSERT_NE(ism, nullptr);
+  EXPECT_THROW(dv::resolveParams(*ism, {{"order", {2.5}}}), std::runtime_error);
+  EXPECT_EQ(dv::resolveParams(*ism, {{"absorption", {0.1, 0.1, 0.2, 0.2, 0.3, 0.3, 0.4, 0.4}}}).at("absorption").size(), 8u);
+}

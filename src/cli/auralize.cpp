@@ -153,8 +153,10 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   CLI::App* sub = app.add_subcommand(
       "auralize", "Convolve a dry recording with an impulse response (partitioned FFT convolution, streaming) "
                   "into a 32-bit float WAV that keeps the whole reverberant tail.");
-  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output");
-  sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)");
+  sub->add_option("--ir", o->ir, "impulse response (WAV, FLAC, …): mono, or one channel per output")
+      ->check(inputPathValidator());
+  sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)")
+      ->check(inputPathValidator());
   sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)")
       ->check(outputPathValidator());
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output (-120 - 120)")

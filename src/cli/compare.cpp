@@ -160,7 +160,9 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       "compare", "Level at each listener relative to free field from the WBSDF ray tracer, UTD edge diffraction and "
                  "the exact reference (Macdonald's half-plane for one edge/barrier, Rayleigh-Sommerfeld for one "
                  "door/slit), per band and on a fine frequency grid, with dB errors against the exact reference.");
-  sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")->required();
+  sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")
+      ->check(inputPathValidator())
+      ->required();
   sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
   addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
   sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->transform(seedValidator())->capture_default_str();

@@ -61,7 +61,7 @@ void parseClose(const std::string& text, double& start_s, double& end_s) {
       const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
       start_s = std::stod(a, &used_a);
       end_s = std::stod(b, &used_b);
-      ok = used_a == a.size() && used_b == b.size();
+      ok = used_a == a.size() && used_b == b.size() && isDecimalNumber(a) && isDecimalNumber(b);  // not 0x10
     } catch (const std::exception&) {
       ok = false;
     }
@@ -128,8 +128,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
               "plays; the room is traced at K openings and the dry signal convolved through them with crossfades "
               "(WAV + spectrogram PNG + JSON + CSV).");
   sub->add_option("room", opts->room_file, "scene file with a door that has a \"panel\" material (rooms/README.md)")
+      ->check(inputPathValidator())
       ->required();
-  sub->add_option("--in", opts->in, "dry signal (WAV, FLAC, ...; its sample rate is the output's)")->required();
+  sub->add_option("--in", opts->in, "dry signal (WAV, FLAC, ...; its sample rate is the output's)")
+      ->check(inputPathValidator())
+      ->required();
   sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener)")
       ->check(outputPathValidator())
       ->required();

@@ -76,7 +76,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   CLI::App* sub = app.add_subcommand(
       "ir", "Trace a room (rooms/*.json) to an impulse response (WAV + JSON sidecar + CSV histograms) and print "
             "its ISO 3382 metrics.");
-  sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->required();
+  sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->check(inputPathValidator())->required();
   sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)")
       ->check(outputPathValidator());
   addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");

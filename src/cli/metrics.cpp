@@ -72,6 +72,7 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
       "metrics", "Room metrics of an impulse response (ISO 3382-1): T20, T30, EDT, C50, C80, D50 and Ts per "
                  "band, from any audio file libsndfile reads; a measured noise floor is cut off (Lundeby).");
   sub->add_option("file", o->file, "impulse response (WAV, FLAC, AIFF, …); time zero is found at the onset")
+      ->check(inputPathValidator())
       ->required();
   sub->add_flag("--json", common.json, "print a JSON object instead of a table");
   sub->add_option("--bands", o->bands, "octave (63 Hz - 8 kHz) or third (third octaves, 50 Hz - 10 kHz)")

@@ -17,6 +17,46 @@ std::uint64_t wholeCount(const std::string& option, double v) {
   return static_cast<std::uint64_t>(v);
 }
 
+bool isDecimalNumber(const std::string& text) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t from = i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+    return i - from;
+  };
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == text.size();
+}
+
+const CLI::Validator& decimalCountValidator() {
+  static const CLI::Validator check(
+      [](const std::string& text) -> std::string {
+        return isDecimalNumber(text) ? std::string() : "must be a whole number >= 1 (e.g. 2000000 or 2e6), got " + text;
+      },
+      "N", "count");
+  return check;
+}
+
+const CLI::Validator& inputPathValidator() {
+  static const CLI::Validator check(
+      [](const std::string& text) -> std::string {
+        return text.empty() ? "an input file name must not be empty" : std::string();
+      },
+      "", "input path");
+  return check;
+}
+
 const CLI::Validator& seedValidator() {
   // CLI11 would read "-3" into a std::uint64_t as 2^64 - 3, clamp 99999999999999999999999 to 2^64 - 1, and
   // read "010" as octal 8: a seed is refused unless all digits and at most 2^64 - 1, and it is handed on
@@ -43,8 +83,7 @@ CLI::Validator wholeNumberValidator(int lo, int hi) {
       [lo, hi](std::string& text) -> std::string {
         // Decimal only: C's strtol, which CLI11 uses for integers, reads "010" as 8 and "0x10" as 16.
         double v = 0.0;
-        if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos ||
-            !CLI::detail::lexical_cast(text, v) || (std::isfinite(v) && std::floor(v) != v) ||
+        if (!isDecimalNumber(text) || !CLI::detail::lexical_cast(text, v) || (std::isfinite(v) && std::floor(v) != v) ||
             (v == 0.0 && text.substr(0, text.find_first_of("eE")).find_first_of("123456789") != std::string::npos))
           return "must be a whole number (e.g. 8 or 1e3), got " + text;  // the last test: 1e-400 underflows to 0
         if (!(v >= lo && v <= hi))  // 1e400 (infinite as a double) too
@@ -94,6 +133,7 @@ void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help
            }
          },
          help)
+      ->check(decimalCountValidator())
       ->type_name("N");
 }
 

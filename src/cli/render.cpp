@@ -46,12 +46,15 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
   CLI::App* sub = app.add_subcommand(
       "render", "Render a light scene (rooms/light/README.md) by spectral light tracing with WBSDF occluders: "
                 "writes OUT.png, OUT.pfm or OUT.exr (linear floats) and OUT.json.");
-  sub->add_option("scene", o->scene, "light scene file (JSON)")->required();
+  sub->add_option("scene", o->scene, "light scene file (JSON)")->check(inputPathValidator())->required();
   sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")
       ->check(outputPathValidator())
       ->required();
-  auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)");
-  sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")->excludes(photons_opt);
+  auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)")
+                          ->check(decimalCountValidator());
+  sub->add_option("--spp", o->spp, "photons per pixel (photons = spp × width × height)")
+      ->check(decimalCountValidator())
+      ->excludes(photons_opt);
   sub->add_option("--seed", common.seed, "random seed (default: the scene's render.seed)")->transform(seedValidator());
   addThreadsOption(sub, common.threads);
   sub->add_option("--exposure", o->exposure, "PNG scale on the linear radiance (default: the scene's, or auto)");

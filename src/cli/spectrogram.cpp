@@ -85,7 +85,7 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
   CLI::App* sub = app.add_subcommand(
       "spectrogram", "Draw the spectrogram of an audio file (Hann-windowed FFT, dB, log frequency axis) as a PNG "
                      "(needs gnuplot).");
-  sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->required();
+  sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->check(inputPathValidator())->required();
   sub->add_option("-o,--out", o->out, "output .png")->check(outputPathValidator())->required();
   sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")
       ->transform(wholeNumberValidator())

@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "diffray/cli/commands.h"
@@ -35,13 +34,6 @@ struct ValidateOptions {
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
 };
 
-/// Case parameters that count (bins, orders, pixels, periods) or switch (floor, rigid-weighting: 0 or 1): the
-/// cases read them as int (or as >= 0.5), so 2.5 would silently become 2 (and 0.7 would be 1).
-const std::set<std::string> kWholeParams{"band-points", "bins", "floor", "order", "periods", "pixels", "rigid-weighting"};
-
-/// The values given to --NAME, each argument a comma-separated list ("125,250", or "125 250"). Splitting here
-/// rather than with CLI11's delimiter, which drops empty entries: "125,,250", "125," and "" are refused, not
-/// read as 125,250. A fractional value of a kWholeParams parameter is refused too (1e3 is a whole number).
 std::vector<double> parseValues(const std::string& name, const std::vector<std::string>& args) {
   std::vector<double> values;
   for (const std::string& arg : args)
@@ -51,10 +43,8 @@ std::vector<double> parseValues(const std::string& name, const std::vector<std::
       double v = 0.0;
       if (item.empty())
         throw CLI::ValidationError("--" + name, "empty entry in \"" + arg + "\" (a comma-separated list of numbers)");
-      if (!CLI::detail::lexical_cast(item, v))
+      if (!isDecimalNumber(item) || !CLI::detail::lexical_cast(item, v))
         throw CLI::ValidationError("--" + name, "must be a number, got \"" + item + "\"");
-      if (kWholeParams.count(name) && std::isfinite(v) && std::floor(v) != v)
-        throw CLI::ValidationError("--" + name, "must be a whole number, got " + item);
       values.push_back(v);
       if (comma == std::string::npos) break;
       start = comma + 1;

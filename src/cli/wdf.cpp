@@ -131,7 +131,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
                        "half-range of tabulated u' (cycles/m; 0 = 2/λ; larger values are clamped to 2/λ, every "
                        "larger shift being evanescent). Not for profile, which always tabulates |u'| < 2/λ"),
        {"slit", "slits", "half-plane", "grating", "rough"}},
-      {sub->add_option("--profile", o->profile, "profile: the CSV file"), {"profile"}},
+      {sub->add_option("--profile", o->profile, "profile: the CSV file")->check(inputPathValidator()), {"profile"}},
   };
   sub->add_option("--csv", o->csv,
                   "write every cell as x_m,u_per_m,w to this CSV file (w = W; for a grating's line spectrum, "

@@ -84,6 +84,7 @@ CaseInfo slitFraunhoferCase() {
               {"distance", {5.0}, "slit to screen (m); far field needs distance >> a²/λ"},
               {"screen", {0.0}, "screen half-width (m); 0 = three diffraction zeros", 0.0, true},
               {"bins", {151}, "screen bins", 3.0, true}};
+  c.param("bins").whole = true;
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fraunhofer", [&](CaseResult& r) {
@@ -109,6 +110,7 @@ CaseInfo doubleSlitCase() {
               {"screen", {0.0}, "screen half-width (m); 0 = to the envelope's first zero", 0.0, true},
               {"bins", {201}, "screen bins", 3.0, true},
               {"bandwidth", {0.0}, "relative bandwidth: frequencies f0·(1 ± b/2), flat; 0 = monochromatic", 0.0, true, 2.0}};
+  c.param("bins").whole = true;
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("double-slit", [&](CaseResult& r) {
@@ -158,6 +160,7 @@ CaseInfo rectApertureCase() {
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"distance", {5.0}, "aperture to screen (m)"},
               {"bins", {41}, "screen bins along each axis", 3.0, true}};
+  c.param("bins").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("rect-aperture", [&](CaseResult& r) {
       const double a = one(p, "width"), b = one(p, "height"), lambda = one(p, "wavelength"),
@@ -197,6 +200,7 @@ CaseInfo slitFresnelCase() {
               {"distance", {0.5}, "slit to screen (m); Fresnel number a²/(λz)"},
               {"screen", {0.0}, "screen half-width (m); 0 = 1.5 a", 0.0, true},
               {"bins", {151}, "screen bins", 3.0, true}};
+  c.param("bins").whole = true;
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("slit-fresnel", [&](CaseResult& r) {
@@ -221,6 +225,8 @@ CaseInfo doorRsCase() {
               {"screen", {3.0}, "half-length of the observation line (m)", 0.0, false, 100.0},
               {"bins", {121}, "bins along the line", 3.0, true},
               {"temperature", {20.0}, "air temperature (°C), sets the speed of sound", -273.15}};
+  c.param("freq").list = true;
+  c.param("bins").whole = true;
   c.angle_impact = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return timed("door-rs", [&](CaseResult& r) {

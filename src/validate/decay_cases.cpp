@@ -103,6 +103,7 @@ CaseInfo specularDecayCase() {
     if (ps.name == "scattering") ps.max = 1e-12;  // specular only: the oracle has no diffuse part
   }
   c.params.push_back({"order", {3}, "image-source order of the traced run (the rest is rays)", -1.0, true, 12.0});
+  c.param("order").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     ShoeboxSpec spec = shoeboxFromParams(p);

@@ -59,6 +59,7 @@ CaseInfo decayMetricsCase() {
              {}};
   c.params = {{"reverb-time", {1.0, 0.5}, "reverberation times T of the decays (s)", 0.05, false, 20.0},
               {"volume", {200.0}, "room volume for the Dirac density of the synthesis (m³)", 1.0, true, 1e9}};
+  c.param("reverb-time").list = true;
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     if (o.model != "wigner") throw core::InputError("--model", "decay-metrics takes no transport model");

@@ -133,11 +133,14 @@ CaseResult runModels(const std::string& name, const room::Room& room, const std:
 }
 
 std::vector<ParamSpec> commonParams(double radius) {
-  return {{"radius", {radius}, "listener sphere radius (m)"},
-          {"transition", {5}, "listeners up to this angle into the shadow (deg) count as transition zone (1 dB target)", -90, false, 90},
-          {"target-from", {250}, "lowest band (Hz) the targets apply to (lower bands are reported)"},
-          {"band-points", {32}, "frequencies per band for the band-averaged UTD and exact levels", 1, true, 4096},
-          {"rigid-weighting", {1}, "1: WBSDF edge rays weighted by the rigid/Kirchhoff coefficient ratio; 0: plain WBSDF (Kirchhoff)", -1, false, 2}};
+  std::vector<ParamSpec> ps{
+      {"radius", {radius}, "listener sphere radius (m)"},
+      {"transition", {5}, "listeners up to this angle into the shadow (deg) count as transition zone (1 dB target)", -90, false, 90},
+      {"target-from", {250}, "lowest band (Hz) the targets apply to (lower bands are reported)"},
+      {"band-points", {32}, "frequencies per band for the band-averaged UTD and exact levels", 1, true, 4096},
+      {"rigid-weighting", {1}, "1: WBSDF edge rays weighted by the rigid/Kirchhoff coefficient ratio; 0: plain WBSDF (Kirchhoff)", -1, false, 2}};
+  ps[3].whole = ps[4].whole = true;
+  return ps;
 }
 
 room::OccluderAxis::Faces facesOf(const Params& p) {
@@ -176,6 +179,7 @@ CaseInfo halfPlaneCase() {
               {"listener-angles", {-30, -20, -10, -5, 0, 5, 10, 15, 20, 25, 30}, "listener angles past the shadow boundary (deg, + into the shadow)", -180, false, 180},
               {"zone", {3}, "width of the WBSDF edge zone (m): past it rays go straight"}};
   for (auto& ps : commonParams(0.15)) c.params.push_back(ps);
+  c.param("listener-angles").list = true;
   c.run = [](const Params& p, const RunOptions& o) {
     HalfPlaneSpec spec;
     spec.source_rho_m = p.at("source-distance")[0];
@@ -205,6 +209,7 @@ CaseInfo barrierCase() {
               {"listener-heights", {1, 0.5, 0, -0.5, -1, -2, -3}, "listener heights relative to the top edge (m)", -1e3, false, 1e3},
               {"zone", {3}, "width of the WBSDF edge zone above the top edge (m)"}};
   for (auto& ps : commonParams(0.15)) c.params.push_back(ps);
+  c.param("listener-heights").list = true;
   c.run = [](const Params& p, const RunOptions& o) {
     // The half-plane frame: the edge on the z axis, the screen the half-plane toward +x (downward); a point
     // at distance D from the screen on the source side and height h relative to the edge is (−h, D, 0).
@@ -241,6 +246,8 @@ CaseInfo doorRoomCase() {
               {"listener-angles", {-20, -10, -5, 0, 5, 10, 20, 30}, "listener angles past the jamb's shadow boundary (deg, + hidden)", -90, false, 90},
               {"floor", {1}, "1: the door stands on a rigid floor; 0: an opening in a free-standing screen", -1, false, 2}};
   for (auto& ps : commonParams(0.15)) c.params.push_back(ps);
+  c.param("listener-angles").list = true;
+  c.param("floor").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     DoorSpec spec;
     spec.width_m = p.at("width")[0];

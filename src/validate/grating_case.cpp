@@ -17,6 +17,7 @@ CaseInfo gratingOrdersCase() {
               {"modulation", {2.0}, "phase modulation m: t = exp(i(m/2)·sin(2πx/Λ))", -1000.0, true, 1000.0},
               {"wavelength", {500e-9}, "wavelength (m)"},
               {"periods", {64}, "illuminated periods", 1.0, true}};
+  c.param("periods").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     if (o.model != "wigner") throw core::InputError("--model", "grating-orders takes the wigner model only");

@@ -57,6 +57,7 @@ CaseInfo imageCdCase() {
               {"height", {0.2}, "distance from the CD to the diffuse ceiling (m)"},
               {"beam", {0.002}, "side of the square laser beam (m)"},
               {"pixels", {64}, "image columns across the 4 cm strip around the first order", 8.0, true, 4097.0}};
+  c.param("pixels").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const ImageRunOptions io = imageRunOptions(o, "image-cd");

@@ -156,6 +156,7 @@ CaseInfo imageLensPsfCase() {
                                 "wall at 1/(1/f - 1/source)", 0.0, true},
               {"lobes", {4.0}, "first zeros λf/a the camera's field spans either side of the centre"},
               {"pixels", {121}, "image width and height in pixels (odd)", 2.0, true, 4097.0}};
+  c.param("pixels").whole = true;
   c.run = [](const Params& p, const RunOptions& o) {
     return runImageLensPsf(lensPsfImageSetup(p), imageRunOptions(o, "image-lens-psf"));
   };

@@ -36,6 +36,12 @@ const std::vector<CaseInfo>& cases() {
   return all;
 }
 
+ParamSpec& CaseInfo::param(const std::string& param_name) {
+  for (ParamSpec& p : params)
+    if (p.name == param_name) return p;
+  throw core::InternalError("case " + name + " has no parameter " + param_name);
+}
+
 const CaseInfo* findCase(const std::string& name) {
   for (const auto& c : cases())
     if (c.name == name) return &c;
@@ -55,8 +61,15 @@ Params resolveParams(const CaseInfo& info, const Params& given) {
     if (values.empty()) throw core::InputError("--" + name, "needs a value");
     const ParamSpec& spec = *std::find_if(info.params.begin(), info.params.end(),
                                           [&](const ParamSpec& p) { return p.name == name; });
+    if (!spec.list && values.size() != 1)  // the case would read the first and drop the rest
+      throw core::InputError("--" + name, "takes one value, got " + std::to_string(values.size()));
     for (double v : values) {
       core::requireFinite("--" + name, v);
+      if (spec.whole && std::floor(v) != v) {
+        std::ostringstream msg;
+        msg << "must be a whole number, got " << v;
+        throw core::InputError("--" + name, msg.str());
+      }
       const bool above = spec.min_inclusive ? v >= spec.min : v > spec.min;
       if (!above || !(v < spec.max)) {
         std::ostringstream msg;

@@ -29,6 +29,7 @@ CaseInfo freeFieldCase() {
   CaseInfo c{"free-field", "point source in free field: fluence 1/r², delay r/c, sphere hit fraction", {}, 4'000'000, {}};
   c.params = {{"distance", {1, 2, 4}, "source-listener distances (m), one listener each"},
               {"radius", {0.3}, "listener sphere radius (m)"}};
+  c.param("distance").list = true;
   c.run = [](const Params& p, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const double radius = p.at("radius")[0];
@@ -141,6 +142,7 @@ CaseInfo shoeboxIsmCase() {
   CaseInfo c{"shoebox-ism", "image sources of any room vs the exact shoebox lattice: delays and energies", {}, 0, {}};
   c.params = shoeboxParams(0.1, 0.2, 0.1);
   c.params.push_back({"order", {4}, "image-source order", 0.0, true, 12.0});
+  c.param("order").whole = true;
   c.run = [](const Params& p, const RunOptions&) {
     const auto t0 = std::chrono::steady_clock::now();
     ShoeboxSpec spec = shoeboxFromParams(p);

@@ -7,12 +7,15 @@
 namespace diffray::validate {
 
 std::vector<ParamSpec> shoeboxParams(double absorption, double scattering, double radius_m) {
-  return {{"dims", {10, 7, 3}, "room size x y z (m)"},
-          {"source", {2, 3, 1.5}, "source position (m)"},
-          {"listener", {7, 4, 1.2}, "listener position (m)"},
-          {"radius", {radius_m}, "listener sphere radius (m)"},
-          {"absorption", {absorption}, "wall absorption: one value, or 8 (octave bands 63 Hz-8 kHz)", 0.0, true, 1.0},
-          {"scattering", {scattering}, "wall scattering coefficient", 0.0, true, 1.0 + 1e-12}};
+  std::vector<ParamSpec> ps{
+      {"dims", {10, 7, 3}, "room size x y z (m)"},
+      {"source", {2, 3, 1.5}, "source position (m)"},
+      {"listener", {7, 4, 1.2}, "listener position (m)"},
+      {"radius", {radius_m}, "listener sphere radius (m)"},
+      {"absorption", {absorption}, "wall absorption: one value, or 8 (octave bands 63 Hz-8 kHz)", 0.0, true, 1.0},
+      {"scattering", {scattering}, "wall scattering coefficient", 0.0, true, 1.0 + 1e-12}};
+  ps[0].list = ps[1].list = ps[2].list = ps[4].list = true;  // three coordinates; 1 or 8 absorptions
+  return ps;
 }
 
 ShoeboxSpec shoeboxFromParams(const Params& p) {

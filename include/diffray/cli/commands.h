@@ -37,6 +37,15 @@ const CLI::Validator& seedValidator();
 /// the option, where CLI11 alone would say "Could not convert" (or, under CLI::Range, "not in range") and would
 /// read "010" as octal.
 CLI::Validator wholeNumberValidator(int lo = std::numeric_limits<int>::min(), int hi = std::numeric_limits<int>::max());
+/// Whether `text` is a decimal number: an optional sign, digits with an optional point (or a point and
+/// digits), an optional exponent. Not hex (strtod and CLI11 read 0x10 as 16), not "nan" or "inf".
+bool isDecimalNumber(const std::string& text);
+/// The check every count option carries (--rays, --photons, --spp): a decimal number, so that 0x10 is refused
+/// rather than read as 16 (the count's range is checked where it is read, wholeCount).
+const CLI::Validator& decimalCountValidator();
+/// The check every input-file option carries (a scene, a WAV, a profile): a name given must not be empty
+/// (`metrics ""` would otherwise fail with the reader's own, less clear message).
+const CLI::Validator& inputPathValidator();
 /// The check every output-file option carries (-o, --csv, --plot, --spectrogram): a name given must not be empty
 /// (`--csv ""` would otherwise mean "no CSV", or the default name).
 const CLI::Validator& outputPathValidator();

@@ -23,6 +23,8 @@ struct ParamSpec {
   /// any other value) by the scenes' float range (room::kMaxCoordinateM, 1e6 m): beyond it Embree would see
   /// infinite coordinates.
   double max = 1e6;
+  bool whole = false;  ///< a count or a switch (the case reads an int): 2.5 is refused, not read as 2
+  bool list = false;   ///< several values allowed (a sweep, a point, per-band values); else exactly one
 };
 
 /// One receiver bin (or one grating order) of a case: screen position, traced and reference values.
@@ -67,6 +69,8 @@ struct CaseInfo {
   std::uint64_t default_rays;
   std::function<CaseResult(const Params&, const RunOptions&)> run;
   bool angle_impact = false;  ///< whether RunOptions::model = "angle-impact" applies
+  /// The parameter `name` (InternalError when the case has none), to set its whole/list flags.
+  ParamSpec& param(const std::string& param_name);
 };
 
 /// Every case, in the order `validate all` runs them.
