@@ -2,7 +2,7 @@
 // measured in the same run (tools/bench runs it).
 //   transport:   diffray's signed-energy tracer vs a plain rtcIntersect1 loop over the same scene, with the
 //                same number of intersection queries per path and the same thread count (the target's
-//                anchor), and vs the same queries in Embree's coherent 16-wide packets, as diffray issues them.
+//                anchor), and vs the same queries in Embree's coherent packets of the width diffray uses.
 //   room:        the acoustic tracer vs a plain rtcIntersect1 loop on each shipped room (room_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
@@ -67,109 +67,114 @@ struct BenchScene {
   }
 };
 
+// Paths per second of `chunkHits(rng, n)`, which traces n paths with its own generator and returns how many
+// reached the screen, over chunks of 16384 paths on every thread (the anchors' shared harness).
+template <class ChunkHits>
+double anchorPathsPerSecond(std::uint64_t paths, const char* anchor, ChunkHits&& chunkHits) {
+  const auto t0 = Clock::now();
+  const std::uint64_t chunk = 16384;
+  const std::uint64_t chunks = paths / chunk;
+  const double hits = tbb::parallel_reduce(
+      tbb::blocked_range<std::uint64_t>(0, chunks, 1), 0.0,
+      [&](const tbb::blocked_range<std::uint64_t>& r, double acc) {
+        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
+          core::Rng rng(7, c);
+          acc += chunkHits(rng, chunk);
+        }
+        return acc;
+      },
+      std::plus<double>(), tbb::simple_partitioner());
+  const double s = secondsSince(t0);
+  if (hits < 0.5 * static_cast<double>(chunks * chunk)) std::cerr << "bench: " << anchor << " rays missed the screen\n";
+  return static_cast<double>(chunks * chunk) / s;
+}
+
 // The anchor: per path, one rtcIntersect1 from the source window to the occluder and one from there in a
 // random direction inside the screen's cone, the same queries diffray makes, with nothing else.
 double plainEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
   RTCScene scene = b.scene.embree()->handle();
-  const auto t0 = Clock::now();
-  const std::uint64_t chunk = 16384;
-  const std::uint64_t chunks = paths / chunk;
-  const double hits = tbb::parallel_reduce(
-      tbb::blocked_range<std::uint64_t>(0, chunks, 1), 0.0,
-      [&](const tbb::blocked_range<std::uint64_t>& r, double acc) {
-        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
-          core::Rng rng(7, c);
-          RTCIntersectContext ctx;
-          rtcInitIntersectContext(&ctx);
-          for (std::uint64_t i = 0; i < chunk; ++i) {
-            RTCRayHit rh;
-            rh.ray.org_x = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
-            rh.ray.org_y = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
-            rh.ray.org_z = -0.5f;
-            rh.ray.dir_x = 0.0f;
-            rh.ray.dir_y = 0.0f;
-            rh.ray.dir_z = 1.0f;
-            rh.ray.tnear = 0.0f;
-            rh.ray.tfar = INFINITY;
-            rh.ray.mask = 0xFFFFFFFFu;
-            rh.ray.flags = 0;
-            rh.ray.time = 0.0f;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(scene, &ctx, &rh);
-            const float ox = rh.ray.org_x, oy = rh.ray.org_y;
-            rh.ray.org_x = ox;
-            rh.ray.org_y = oy;
-            rh.ray.org_z = 0.0f;
-            rh.ray.dir_x = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
-            rh.ray.dir_z = std::sqrt(1.0f - rh.ray.dir_x * rh.ray.dir_x);
-            rh.ray.tnear = 1e-6f;
-            rh.ray.tfar = INFINITY;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(scene, &ctx, &rh);
-            acc += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
-          }
-        }
-        return acc;
-      },
-      std::plus<double>(), tbb::simple_partitioner());
-  const double s = secondsSince(t0);
-  if (hits < 0.5 * static_cast<double>(chunks * chunk)) std::cerr << "bench: anchor rays missed the screen\n";
-  return static_cast<double>(chunks * chunk) / s;
+  return anchorPathsPerSecond(paths, "anchor", [&](core::Rng& rng, std::uint64_t n) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    double acc = 0.0;
+    for (std::uint64_t i = 0; i < n; ++i) {
+      RTCRayHit rh;
+      rh.ray.org_x = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
+      rh.ray.org_y = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
+      rh.ray.org_z = -0.5f;
+      rh.ray.dir_x = 0.0f;
+      rh.ray.dir_y = 0.0f;
+      rh.ray.dir_z = 1.0f;
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = INFINITY;
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.0f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      const float ox = rh.ray.org_x, oy = rh.ray.org_y;
+      rh.ray.org_x = ox;
+      rh.ray.org_y = oy;
+      rh.ray.org_z = 0.0f;
+      rh.ray.dir_x = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
+      rh.ray.dir_z = std::sqrt(1.0f - rh.ray.dir_x * rh.ray.dir_x);
+      rh.ray.tnear = 1e-6f;
+      rh.ray.tfar = INFINITY;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      acc += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
+    }
+    return acc;
+  });
 }
 
-// A second anchor: the same queries as Embree's 16-wide packets with the coherent-ray hint, as diffray's
-// tracer issues them (geometry::EmbreeScene::intersectPacket): Embree at its fastest on these rays, so
-// diffray's own cost per path shows beside the ratio the target is set on.
-double packetEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
+// A second anchor: the same queries in Embree's packets with the coherent-ray hint, of the width diffray's
+// tracer uses on this CPU (geometry::EmbreeScene::intersectPacket: 16 where Embree has native 16-wide
+// packets, else 8), so that diffray's own cost per path shows beside the ratio the target is set on.
+template <int W, typename RayHitW, typename IntersectW>
+double packetEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths, IntersectW intersect) {
   RTCScene scene = b.scene.embree()->handle();
-  const auto t0 = Clock::now();
-  const std::uint64_t chunk = 16384;
-  const std::uint64_t chunks = paths / chunk;
-  const double hits = tbb::parallel_reduce(
-      tbb::blocked_range<std::uint64_t>(0, chunks, 1), 0.0,
-      [&](const tbb::blocked_range<std::uint64_t>& r, double acc) {
-        for (std::uint64_t c = r.begin(); c != r.end(); ++c) {
-          core::Rng rng(7, c);
-          RTCIntersectContext ctx;
-          rtcInitIntersectContext(&ctx);
-          ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-          alignas(64) int valid[16];
-          std::fill(valid, valid + 16, -1);
-          for (std::uint64_t i = 0; i < chunk; i += 16) {
-            alignas(64) RTCRayHit16 rh;
-            for (int k = 0; k < 16; ++k) {
-              rh.ray.org_x[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
-              rh.ray.org_y[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
-              rh.ray.org_z[k] = -0.5f;
-              rh.ray.dir_x[k] = 0.0f;
-              rh.ray.dir_y[k] = 0.0f;
-              rh.ray.dir_z[k] = 1.0f;
-              rh.ray.tnear[k] = 0.0f;
-              rh.ray.tfar[k] = INFINITY;
-              rh.ray.mask[k] = 0xFFFFFFFFu;
-              rh.ray.flags[k] = 0;
-              rh.ray.time[k] = 0.0f;
-              rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-            }
-            rtcIntersect16(valid, scene, &ctx, &rh);
-            for (int k = 0; k < 16; ++k) {
-              rh.ray.org_z[k] = 0.0f;
-              rh.ray.dir_x[k] = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
-              rh.ray.dir_z[k] = std::sqrt(1.0f - rh.ray.dir_x[k] * rh.ray.dir_x[k]);
-              rh.ray.tnear[k] = 1e-6f;
-              rh.ray.tfar[k] = INFINITY;
-              rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-            }
-            rtcIntersect16(valid, scene, &ctx, &rh);
-            for (int k = 0; k < 16; ++k) acc += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
-          }
-        }
-        return acc;
-      },
-      std::plus<double>(), tbb::simple_partitioner());
-  const double s = secondsSince(t0);
-  if (hits < 0.5 * static_cast<double>(chunks * chunk)) std::cerr << "bench: packet anchor rays missed the screen\n";
-  return static_cast<double>(chunks * chunk) / s;
+  return anchorPathsPerSecond(paths, "packet anchor", [&](core::Rng& rng, std::uint64_t n) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[W];
+    std::fill(valid, valid + W, -1);
+    double acc = 0.0;
+    for (std::uint64_t i = 0; i < n; i += W) {
+      alignas(64) RayHitW rh;
+      for (int k = 0; k < W; ++k) {
+        rh.ray.org_x[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_x_m);
+        rh.ray.org_y[k] = static_cast<float>((2 * rng.uniform() - 1) * b.source.half_y_m);
+        rh.ray.org_z[k] = -0.5f;
+        rh.ray.dir_x[k] = 0.0f;
+        rh.ray.dir_y[k] = 0.0f;
+        rh.ray.dir_z[k] = 1.0f;
+        rh.ray.tnear[k] = 0.0f;
+        rh.ray.tfar[k] = INFINITY;
+        rh.ray.mask[k] = 0xFFFFFFFFu;
+        rh.ray.flags[k] = 0;
+        rh.ray.time[k] = 0.0f;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      intersect(valid, scene, &ctx, &rh);
+      for (int k = 0; k < W; ++k) {
+        rh.ray.org_z[k] = 0.0f;
+        rh.ray.dir_x[k] = static_cast<float>(0.0149 * (2 * rng.uniform() - 1));
+        rh.ray.dir_z[k] = std::sqrt(1.0f - rh.ray.dir_x[k] * rh.ray.dir_x[k]);
+        rh.ray.tnear[k] = 1e-6f;
+        rh.ray.tfar[k] = INFINITY;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      intersect(valid, scene, &ctx, &rh);
+      for (int k = 0; k < W; ++k) acc += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? 1.0 : 0.0;
+    }
+    return acc;
+  });
+}
+double packetEmbreeRaysPerSecond(const BenchScene& b, std::uint64_t paths) {
+  return b.scene.embree()->nativePacket16() ? packetEmbreeRaysPerSecond<16, RTCRayHit16>(b, paths, rtcIntersect16)
+                                            : packetEmbreeRaysPerSecond<8, RTCRayHit8>(b, paths, rtcIntersect8);
 }
 
 double median(std::vector<double> v) {
@@ -181,8 +186,8 @@ void benchTransport(std::uint64_t paths) {
   BenchScene b;
   const int threads = core::ThreadLimit::current();
   plainEmbreeRaysPerSecond(b, paths / 8);  // warm-up
-  // Alternate the anchor and diffray three times and keep the medians: the machine's speed drifts.
   packetEmbreeRaysPerSecond(b, paths / 8);
+  // Alternate the anchors and diffray three times and keep the medians: the machine's speed drifts.
   std::vector<double> embree_runs, packet_runs, diffray_runs;
   double segments_per_path = 0.0;
   for (int rep = 0; rep < 3; ++rep) {
@@ -204,7 +209,8 @@ void benchTransport(std::uint64_t paths) {
                    {"embree_rays_per_s", embree},
                    {"diffray_rays_per_s", diffray},
                    {"ratio", diffray / embree},
-                   {"embree_packet16_rays_per_s", packets},
+                   {"embree_packet_rays_per_s", packets},
+                   {"embree_packet_width", b.scene.embree()->nativePacket16() ? 16 : 8},
                    {"ratio_vs_packets", diffray / packets},
                    {"threads", threads}};
   std::cout << j.dump() << std::endl;

@@ -187,7 +187,7 @@ TraceResult trace(const Scene& scene, const CollimatedSource& source, const Trac
   constexpr int kPacket = geometry::RayPacket::kSize;
   auto body = [&](TraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {
     core::ChunkSampler sampler(rng, kGenerators, kDimFree, options.qmc);
-    PathState s[kPacket];
+    PathState s[kPacket]{};  // lanes past the chunk's end are copied into the packet too (inactive)
     geometry::RayPacket packet;
     geometry::HitPacket hits;
     for (std::uint64_t first = begin; first < end; first += kPacket) {

@@ -139,7 +139,7 @@ std::vector<ParamSpec> commonParams(double radius) {
       {"target-from", {250}, "lowest band (Hz) the targets apply to (lower bands are reported)"},
       {"band-points", {32}, "frequencies per band for the band-averaged UTD and exact levels", 1, true, 4096},
       {"rigid-weighting", {1}, "1: WBSDF edge rays weighted by the rigid/Kirchhoff coefficient ratio; 0: plain WBSDF (Kirchhoff)", -1, false, 2}};
-  ps[3].whole = ps[4].whole = true;
+  for (ParamSpec& p : ps) p.whole = p.name == "band-points" || p.name == "rigid-weighting";
   return ps;
 }
 

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -66,9 +67,9 @@ Params resolveParams(const CaseInfo& info, const Params& given) {
     for (double v : values) {
       core::requireFinite("--" + name, v);
       if (spec.whole && std::floor(v) != v) {
-        std::ostringstream msg;
-        msg << "must be a whole number, got " << v;
-        throw core::InputError("--" + name, msg.str());
+        char digits[32];  // the shortest text that reads back as v: 2.0000001 must not print as 2
+        const std::to_chars_result end = std::to_chars(digits, digits + sizeof digits, v);
+        throw core::InputError("--" + name, "must be a whole number, got " + std::string(digits, end.ptr));
       }
       const bool above = spec.min_inclusive ? v >= spec.min : v > spec.min;
       if (!above || !(v < spec.max)) {

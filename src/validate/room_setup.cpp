@@ -14,7 +14,8 @@ std::vector<ParamSpec> shoeboxParams(double absorption, double scattering, doubl
       {"radius", {radius_m}, "listener sphere radius (m)"},
       {"absorption", {absorption}, "wall absorption: one value, or 8 (octave bands 63 Hz-8 kHz)", 0.0, true, 1.0},
       {"scattering", {scattering}, "wall scattering coefficient", 0.0, true, 1.0 + 1e-12}};
-  ps[0].list = ps[1].list = ps[2].list = ps[4].list = true;  // three coordinates; 1 or 8 absorptions
+  for (ParamSpec& p : ps)  // three coordinates; 1 or 8 absorptions
+    p.list = p.name == "dims" || p.name == "source" || p.name == "listener" || p.name == "absorption";
   return ps;
 }
 
