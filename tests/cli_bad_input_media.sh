@@ -336,6 +336,8 @@ expect_clean "signal --rate 48000.5"   "sig.*" "--rate: must be a whole number" 
 expect_clean "ir --rays 0x10"          "out.*" "--rays: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 0x10
 expect_clean "render --photons 0x10"   "out.*" "--photons: must be a whole number" render "$rooms/light/double-slit.json" -o "$tmp/out.png" --photons 0x10
 expect_clean "door --close 0x1:2"      "door.*" "--close: must be START:END" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0x1:2
+expect_clean "auralize --gain 0x10"    "wet.*" "--gain: must be a decimal number" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain 0x10
+expect_clean "wdf --wavelength 0x1p-21" "out.csv*" "--wavelength: must be a decimal number" wdf slit --wavelength 0x1p-21 "$csv"
 expect_clean "metrics \"\""             "out.*" "file: an input file name must not be empty" metrics ""
 expect_clean "auralize --ir \"\""       "wet.*" "--ir: an input file name must not be empty" auralize --ir "" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
 expect_clean "ir \"\""                  "out.*" "room: an input file name must not be empty" ir "" -o "$tmp/out.wav"

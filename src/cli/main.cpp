@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner spectrogram = diffray::cli::addSpectrogramCommand(app, common);
   diffray::cli::Runner dry_signal = diffray::cli::addSignalCommand(app, common);
   diffray::cli::Runner render = diffray::cli::addRenderCommand(app, common);
+  diffray::cli::requireDecimalFloats(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

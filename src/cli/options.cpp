@@ -39,6 +39,17 @@ bool isDecimalNumber(const std::string& text) {
   return i == text.size();
 }
 
+void requireDecimalFloats(CLI::App& app) {
+  static const CLI::Validator decimal(
+      [](const std::string& text) -> std::string {
+        return isDecimalNumber(text) ? std::string() : "must be a decimal number, got " + text;
+      },
+      "", "decimal");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* opt : sub->get_options())
+      if (opt->get_type_name().rfind("FLOAT", 0) == 0) opt->check(decimal);  // double targets: "FLOAT..."
+}
+
 const CLI::Validator& decimalCountValidator() {
   static const CLI::Validator check(
       [](const std::string& text) -> std::string {

@@ -40,6 +40,9 @@ CLI::Validator wholeNumberValidator(int lo = std::numeric_limits<int>::min(), in
 /// Whether `text` is a decimal number: an optional sign, digits with an optional point (or a point and
 /// digits), an optional exponent. Not hex (strtod and CLI11 read 0x10 as 16), not "nan" or "inf".
 bool isDecimalNumber(const std::string& text);
+/// Adds a decimal-number check to every floating-point option of every subcommand of `app` (CLI11 would
+/// read --gain 0x10 as 16 dB, as C's strtod does). Call once all subcommands are added.
+void requireDecimalFloats(CLI::App& app);
 /// The check every count option carries (--rays, --photons, --spp): a decimal number, so that 0x10 is refused
 /// rather than read as 16 (the count's range is checked where it is read, wholeCount).
 const CLI::Validator& decimalCountValidator();
