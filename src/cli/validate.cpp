@@ -34,6 +34,10 @@ struct ValidateOptions {
   std::map<std::string, std::vector<double>> values;  ///< every case parameter the user set
 };
 
+/// The values given to --NAME, each argument a comma-separated list ("125,250", or "125 250"). Splitting here
+/// rather than with CLI11's delimiter, which drops empty entries: "125,,250", "125," and "" are refused, not
+/// read as 125,250. Decimal only (strtod would read 0x10 as 16). Whether the parameter takes several values
+/// or whole numbers only is the case's to say (validate::resolveParams).
 std::vector<double> parseValues(const std::string& name, const std::vector<std::string>& args) {
   std::vector<double> values;
   for (const std::string& arg : args)

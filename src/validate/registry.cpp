@@ -37,10 +37,13 @@ const std::vector<CaseInfo>& cases() {
   return all;
 }
 
-ParamSpec& CaseInfo::param(const std::string& param_name) {
-  for (ParamSpec& p : params)
+const ParamSpec& CaseInfo::param(const std::string& param_name) const {
+  for (const ParamSpec& p : params)
     if (p.name == param_name) return p;
   throw core::InternalError("case " + name + " has no parameter " + param_name);
+}
+ParamSpec& CaseInfo::param(const std::string& param_name) {
+  return const_cast<ParamSpec&>(static_cast<const CaseInfo&>(*this).param(param_name));
 }
 
 const CaseInfo* findCase(const std::string& name) {
@@ -60,8 +63,7 @@ Params resolveParams(const CaseInfo& info, const Params& given) {
       throw core::InputError("--" + name, "does not apply to case " + info.name + " (it takes " + takes + ")");
     }
     if (values.empty()) throw core::InputError("--" + name, "needs a value");
-    const ParamSpec& spec = *std::find_if(info.params.begin(), info.params.end(),
-                                          [&](const ParamSpec& p) { return p.name == name; });
+    const ParamSpec& spec = info.param(name);
     if (!spec.list && values.size() != 1)  // the case would read the first and drop the rest
       throw core::InputError("--" + name, "takes one value, got " + std::to_string(values.size()));
     for (double v : values) {

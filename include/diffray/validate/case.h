@@ -71,6 +71,7 @@ struct CaseInfo {
   bool angle_impact = false;  ///< whether RunOptions::model = "angle-impact" applies
   /// The parameter `name` (InternalError when the case has none), to set its whole/list flags.
   ParamSpec& param(const std::string& param_name);
+  const ParamSpec& param(const std::string& param_name) const;
 };
 
 /// Every case, in the order `validate all` runs them.
