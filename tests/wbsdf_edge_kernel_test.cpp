@@ -10,34 +10,19 @@
 #include <vector>
 
 #include "chi2.h"
+#include "quadrature_rules.h"
 #include "diffray/wbsdf/edge_kernel.h"
 
 namespace dw = diffray::wbsdf;
 namespace dt = diffray::testing;
+using dt::midpoint;
+using dt::simpson;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 double sincRef(double w) { return w == 0.0 ? 1.0 : std::sin(kPi * w) / (kPi * w); }
-
-// ∫_a^b f by composite Simpson with n (even) panels: the test's own quadrature.
-template <class F>
-double simpson(F f, double a, double b, int n) {
-  const double h = (b - a) / n;
-  double s = f(a) + f(b);
-  for (int i = 1; i < n; ++i) s += f(a + i * h) * (i % 2 ? 4.0 : 2.0);
-  return s * h / 3.0;
-}
-
-// ∫_a^b f by the composite midpoint rule (no end points: the pdf jumps at the bin edges ±M).
-template <class F>
-double midpoint(F f, double a, double b, int n) {
-  const double h = (b - a) / n;
-  double s = 0.0;
-  for (int i = 0; i < n; ++i) s += f(a + (i + 0.5) * h);
-  return s * h;
-}
 
 }  // namespace
 

@@ -37,6 +37,7 @@ struct IrOptions {
   std::string plot;
   std::string diffraction = "none";
   int diffraction_order = 1;
+  bool portal = true;
 };
 
 // Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (design.md §1:
@@ -99,6 +100,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)")
       ->check(outputPathValidator());
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
+  addContinuationOption(sub, opts->portal);
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -125,6 +127,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     so.length_s = opts->length_s;
     so.diffraction = opts->diffraction;
     so.max_diffractions = opts->diffraction_order;
+    so.portal = opts->portal;
     const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
     core::Progress progress("ir " + room.name, rays * room.sources.size());
     so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
@@ -190,6 +193,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"ism_order", sim.ism_order},
         {"diffraction", opts->diffraction},
         {"diffraction_order", opts->diffraction_order},
+        {"wbsdf_continuation", opts->portal ? "portal" : "wigner"},
         {"occluders", room.occluders.size()},
         {"image_sources", sim.image_sources},
         {"speed_of_sound_m_s", sim.speed_of_sound_m_s},

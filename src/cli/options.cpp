@@ -162,6 +162,16 @@ void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order) 
       ->capture_default_str();
 }
 
+void addContinuationOption(CLI::App* sub, bool& portal) {
+  sub->add_option_function<std::string>(
+         "--wbsdf-continuation", [&portal](const std::string& v) { portal = v == "portal"; },
+         "wbsdf: how a ray goes on past an opening once next-event estimation has scored its first flight. "
+         "portal: in the direction law of the whole opening (its far-field pattern), a positive weight; wigner: "
+         "from the Wigner distribution at the hit point, a signed weight (noisier in reverberant rooms)")
+      ->check(CLI::IsMember({"portal", "wigner"}))
+      ->default_str(portal ? "portal" : "wigner");
+}
+
 void checkOutputFile(const std::string& path, const std::string& ext) {
   namespace fs = std::filesystem;
   if (!ext.empty() && fs::path(path).extension() != ext)

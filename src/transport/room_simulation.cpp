@@ -273,6 +273,7 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   to.on_progress = options.on_progress;
   to.occluders = occluders.get();
   to.max_diffractions = options.max_diffractions;
+  to.portal = options.portal;
   std::vector<std::uint64_t> crossings;
   for (int s = 0; s < static_cast<int>(room.sources.size()); ++s) {
     to.seed = options.seed + 1000003ull * static_cast<std::uint64_t>(s);  // independent streams per source

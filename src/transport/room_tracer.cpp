@@ -299,14 +299,15 @@ struct Tracer {
   // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
   bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
     ++acc.occluder_events;
-    if (opt.next_event && opt.occluders->nextEventSupported(k)) {
+    const bool served = opt.next_event && opt.occluders->nextEventSupported(k);
+    if (served) {
       s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
       s.floor_plane = floor_plane[k];
     }
     double xi[4];
     for (double& v : xi) v = rng.uniform();
     if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
-    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
+    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi, served && opt.portal);
     if (!sc.alive) {
       if (sc.evanescent) ++acc.evanescent;
       return false;

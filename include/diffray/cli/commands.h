@@ -68,6 +68,8 @@ void addThreadsOption(CLI::App* sub, int& threads);
 
 /// Adds --diffraction none|wbsdf|utd and --diffraction-order N (1–8) to `sub`.
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
+/// `--wbsdf-continuation portal|wigner`: how a ray goes on past an opening (RoomSimulationOptions::portal).
+void addContinuationOption(CLI::App* sub, bool& portal);
 
 /// Checks an output path before any work: its extension is `ext` (".wav"; not checked when empty) and its folder
 /// exists and is writable, and the path is not a folder. Throws core::InputError naming the path.

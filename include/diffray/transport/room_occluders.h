@@ -41,8 +41,13 @@ class RoomOccluders {
     core::Vec3 dir{0, 0, 1};
   };
   /// Scatters a ray of wavelength `lambda_m` meeting occluder `k` at `p` with unit direction `dir`, from
-  /// four uniforms in [0, 1).
-  Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4]) const;
+  /// four uniforms in [0, 1). `portal`: along an Opening axis the shift is drawn from the opening's far-field
+  /// pattern |T(u)|²/∫|t|² (wbsdf/far_field.h) instead of W(x,·): the product of W's two marginals, exact in
+  /// both (the energy through each point, and the pattern of the whole opening), positive, but without W's
+  /// correlation of position and direction (its near-field fringes). The tracer uses it for the flights after
+  /// the first, whose near field next-event estimation has already served (RoomTraceOptions::portal).
+  Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4],
+                  bool portal = false) const;
 
   /// Next-event estimation (a conditional expectation over the WBSDF draw): the expected score of a listener
   /// sphere, E[weight · faces · chordWeight/crossSection · 1(the scattered ray crosses the sphere)], per unit
@@ -74,7 +79,7 @@ class RoomOccluders {
   /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max. `open_sign`: ±1
   /// the direction along the axis from the nearer diffracting edge into the opening, 0 if none.
   static void sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
-                         const double* xi, double& u, double& w, double& open_sign);
+                         const double* xi, double& u, double& w, double& open_sign, bool portal = false);
   /// The edge kernel's scale along an axis at local coordinate c: 4d (d the distance to the nearer
   /// diffracting edge) and the sign of the direction from that edge into the opening.
   static void edgeDistance(const Axis& a, double c, double& four_d, double& open_sign);

@@ -30,6 +30,10 @@ struct RoomSimulationOptions {
   /// as exact arrivals.
   std::string diffraction = "none";
   int max_diffractions = 1;  ///< WBSDF scatterings per path (RoomTraceOptions::max_diffractions)
+  /// "wbsdf": the rays that go on past an opening draw their direction from its far-field pattern
+  /// (RoomTraceOptions::portal: positive, no signed noise in the reverberant field); false: from W(x,·) with
+  /// signed weights (the plain estimator, for comparison).
+  bool portal = true;
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
   /// Called once every input check has passed, before any tracing (the CLI prints its warnings then, so
   /// that a refused run prints one line only).
