@@ -5,7 +5,6 @@
 
 #include "diffray/core/error.h"
 #include "diffray/wbsdf/edge_kernel.h"
-#include "diffray/wbsdf/far_field.h"
 #include "diffray/wbsdf/microstructure.h"
 
 namespace diffray::transport {
@@ -81,25 +80,13 @@ void RoomOccluders::edgeDistance(const Axis& a, double c, double& four_d, double
 }
 
 void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
-                               const double* xi, double& u, double& w, double& open_sign, bool portal) {
+                               const double* xi, double& u, double& w, double& open_sign) {
   open_sign = 0.0;
   switch (a.spec.kind) {
     case Kind::Uniform:
       u = 0.0, w = 1.0;
       return;
     case Kind::Opening:
-      if (portal) {
-        // The opening's far-field pattern |T(u)|²/∫|t|² (wbsdf/far_field.h), the same at every hit point: an
-        // opening with a mirror at `lo` (a door's floor) radiates as the opening and its image, width 2A.
-        const double width = (a.spec.mirror_lo ? 2.0 : 1.0) * (a.spec.hi_m - a.spec.lo_m);
-        const double scale = width / lambda_m;  // w per unit of direction cosine
-        const wbsdf::FarFieldSample s = wbsdf::farFieldSample((-alpha_max - alpha) * scale, (alpha_max - alpha) * scale, xi[0]);
-        double four_d;
-        edgeDistance(a, c, four_d, open_sign);
-        u = s.w / width, w = s.weight;
-        return;
-      }
-      [[fallthrough]];
     case Kind::Edge: {
       // W = 4d·sinc(4du), d the distance to the nearer diffracting edge (wbsdf/edge_kernel.h); u' = w/(4d),
       // drawn only where the outgoing cosine α + λu' stays within ±alpha_max (the rest is evanescent).
@@ -124,7 +111,7 @@ void RoomOccluders::sampleAxis(const Axis& a, double c, double lambda_m, double 
 }
 
 RoomOccluders::Scatter RoomOccluders::scatter(int k, const Vec3& p, const Vec3& dir, double lambda_m,
-                                              const double xi[4], bool portal) const {
+                                              const double xi[4]) const {
   const Entry& e = occluders_[k];
   const room::Occluder& o = e.spec;
   const Vec3 local = p - o.origin_m;
@@ -136,9 +123,9 @@ RoomOccluders::Scatter RoomOccluders::scatter(int k, const Vec3& p, const Vec3& 
   const double alpha_i = dir.dot(o.ex), beta_i = dir.dot(o.ey);
   const double alpha_max = e.y.spec.kind == Kind::Uniform ? std::sqrt(std::max(0.0, 1.0 - beta_i * beta_i)) : 1.0;
   double u, wx, v, wy, open_x, open_y;
-  sampleAxis(e.x, x, lambda_m, alpha_i, alpha_max, xi, u, wx, open_x, portal);
+  sampleAxis(e.x, x, lambda_m, alpha_i, alpha_max, xi, u, wx, open_x);
   const double alpha = alpha_i + lambda_m * u;
-  sampleAxis(e.y, y, lambda_m, beta_i, std::sqrt(std::max(0.0, 1.0 - alpha * alpha)), xi + 2, v, wy, open_y, portal);
+  sampleAxis(e.y, y, lambda_m, beta_i, std::sqrt(std::max(0.0, 1.0 - alpha * alpha)), xi + 2, v, wy, open_y);
   s.weight = wx * wy;
   if (s.weight == 0.0) return s;
   const double beta = beta_i + lambda_m * v;

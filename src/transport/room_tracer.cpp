@@ -299,15 +299,14 @@ struct Tracer {
   // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
   bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
     ++acc.occluder_events;
-    const bool served = opt.next_event && opt.occluders->nextEventSupported(k);
-    if (served) {
+    if (opt.next_event && opt.occluders->nextEventSupported(k)) {
       s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
       s.floor_plane = floor_plane[k];
     }
     double xi[4];
     for (double& v : xi) v = rng.uniform();
     if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
-    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi, served && opt.portal);
+    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
     if (!sc.alive) {
       if (sc.evanescent) ++acc.evanescent;
       return false;
@@ -316,6 +315,51 @@ struct Tracer {
     double w = sc.weight;
     if (o.reflect) w *= 1.0 - room.materials[o.material].absorption[s.band];
     s.e[s.band] *= w;
+    s.dir = sc.dir;
+    s.pos += (sc.dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;  // off the plane, on the side it leaves to
+    s.specular_chain = false;
+    ++s.order;
+    ++s.diffractions;
+    return true;
+  }
+
+  // The portal at occluder k (RoomTraceOptions::portal) for a path that carries every band: next-event
+  // estimation in one band picked uniformly (its energy times the live band count, so each band is served
+  // in expectation), at one frequency in it; the path goes on in every band along one direction from
+  // RoomOccluders::scatterPortal, each band at a frequency at the same place in its band. False when it ends.
+  bool portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
+    ++acc.occluder_events;
+    int live[core::kMaxBands], n = 0;
+    for (int b = 0; b < bands; ++b)
+      if (s.e[b] != 0.0) live[n++] = b;
+    if (n == 0) return false;
+    const bool first = s.has_qmc && s.diffractions == 0;
+    const double x = (first ? s.qmc[2] : rng.uniform()) * n;
+    const int pick = std::min(n - 1, static_cast<int>(x));
+    const double place = std::min(1.0, x - pick);
+    double lambda[core::kMaxBands];
+    for (int i = 0; i < n; ++i) {
+      const int b = live[i];
+      lambda[i] = opt.speed_of_sound_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
+    }
+    Path one = s;
+    one.band = live[pick];
+    one.lambda_m = lambda[pick];
+    one.e[one.band] = s.e[one.band] * n;
+    s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor);
+    s.floor_plane = floor_plane[k];
+    double xi[4];
+    for (double& v : xi) v = rng.uniform();
+    if (first) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
+    double w[core::kMaxBands];
+    const RoomOccluders::PortalScatter sc = opt.occluders->scatterPortal(k, s.pos, s.dir, lambda, n, pick, xi, w);
+    if (!sc.alive) {
+      if (sc.evanescent) ++acc.evanescent;
+      return false;
+    }
+    core::BandArray e = core::bandFill(0.0);
+    for (int i = 0; i < n; ++i) e[live[i]] = s.e[live[i]] * w[i];
+    s.e = e;
     s.dir = sc.dir;
     s.pos += (sc.dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;  // off the plane, on the side it leaves to
     s.specular_chain = false;
@@ -413,8 +457,12 @@ struct Tracer {
             // The occluder code works on the Path.
             s.e = asBands(e, scale);
             s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
-            if (s.band < 0) chooseBand(rng, s);
-            if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
+            if (opt.portal && opt.next_event && opt.occluders->nextEventSupported(k)) {
+              if (!portalAtOccluder(acc, rng, s, k, n_in)) return;
+            } else {
+              if (s.band < 0) chooseBand(rng, s);
+              if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
+            }
             if (!roulette<0>(acc, rng, s.e, threshold)) return;
             e = carried<NB>(s.e, scale);
             pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;

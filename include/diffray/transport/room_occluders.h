@@ -41,13 +41,26 @@ class RoomOccluders {
     core::Vec3 dir{0, 0, 1};
   };
   /// Scatters a ray of wavelength `lambda_m` meeting occluder `k` at `p` with unit direction `dir`, from
-  /// four uniforms in [0, 1). `portal`: along an Opening axis the shift is drawn from the opening's far-field
-  /// pattern |T(u)|²/∫|t|² (wbsdf/far_field.h) instead of W(x,·): the product of W's two marginals, exact in
-  /// both (the energy through each point, and the pattern of the whole opening), positive, but without W's
-  /// correlation of position and direction (its near-field fringes). The tracer uses it for the flights after
-  /// the first, whose near field next-event estimation has already served (RoomTraceOptions::portal).
-  Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4],
-                  bool portal = false) const;
+  /// four uniforms in [0, 1).
+  Scatter scatter(int k, const core::Vec3& p, const core::Vec3& dir, double lambda_m, const double xi[4]) const;
+
+  struct PortalScatter {
+    bool alive = false;
+    bool evanescent = false;
+    core::Vec3 dir{0, 0, 1};
+  };
+  /// The portal scattering of a ray that carries n bands at once (RoomTraceOptions::portal), at wavelengths
+  /// lambda_m[0 … n): one outgoing direction, drawn from the law of band `pick` (the caller picks it
+  /// uniformly: the draw is then from the mixture of the bands' laws), and per band i the factor
+  /// weight[i] = f_i/((1/n)Σ_j q_j) on its energy (one-sample multiple importance sampling, balance heuristic):
+  /// f_i the band's target density, q_j the bands' proposal densities, so that every band's expectation is
+  /// that of its own law. Opening axes draw from the opening's far-field pattern |T(u)|²/∫|t|²
+  /// (wbsdf/far_field.h) instead of W(x,·): the product of W's two marginals, exact in both (the energy through
+  /// each point, the pattern of the whole opening), positive, without W's correlation of position and
+  /// direction (its near-field fringes: the caller's next-event estimate keeps those). Edge axes from the edge kernel (signed), uniform axes pass. For occluders that support
+  /// next-event estimation (the caller's next-event estimate serves the first flight with the exact W).
+  PortalScatter scatterPortal(int k, const core::Vec3& p, const core::Vec3& dir, const double* lambda_m, int n,
+                              int pick, const double xi[4], double* weight) const;
 
   /// Next-event estimation (a conditional expectation over the WBSDF draw): the expected score of a listener
   /// sphere, E[weight · faces · chordWeight/crossSection · 1(the scattered ray crosses the sphere)], per unit
@@ -79,10 +92,12 @@ class RoomOccluders {
   /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max. `open_sign`: ±1
   /// the direction along the axis from the nearer diffracting edge into the opening, 0 if none.
   static void sampleAxis(const Axis& a, double c, double lambda_m, double alpha, double alpha_max,
-                         const double* xi, double& u, double& w, double& open_sign, bool portal = false);
+                         const double* xi, double& u, double& w, double& open_sign);
   /// The edge kernel's scale along an axis at local coordinate c: 4d (d the distance to the nearer
   /// diffracting edge) and the sign of the direction from that edge into the opening.
   static void edgeDistance(const Axis& a, double c, double& four_d, double& open_sign);
+  struct AxisLaw;  ///< one axis's law of the outgoing direction cosine for scatterPortal (occluder_portal.cpp)
+  static AxisLaw axisLaw(const Axis& a, double coord, double c, double c_max);
   std::vector<Entry> occluders_;
   std::vector<int> of_triangle_;
   std::vector<char> mask_;

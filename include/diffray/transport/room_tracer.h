@@ -74,14 +74,15 @@ struct RoomTraceOptions {
   /// scattering adds to every visible listener the expected score of the scattered ray's next segment, and
   /// that segment itself is not scored. Unbiased like the plain estimator, with far less noise in shadows.
   bool next_event = true;
-  /// With next-event estimation: the ray that goes on past an opening draws its direction from the
-  /// opening's far-field pattern (RoomOccluders::scatter's `portal`), positive, instead of from W(x,·) with a
-  /// signed weight. Next-event estimation keeps W exact on the first flight (where its near-field fringes and
-  /// the shadow's diffracted sound are); the later flights keep W's marginals (the energy through each point,
-  /// the opening's radiation pattern) but not its correlation of position and direction. In a reverberant
-  /// room the signed rays of the plain estimator are noise that outlives the near field (a listener's band
-  /// could sum negative); the portal's rays carry none. Listeners whose next-event estimate is not taken
-  /// (NaN: the kernel swings through too many periods across the sphere) score the portal's first flight.
+  /// With next-event estimation, at occluders that support it: the portal. Next-event estimation serves the
+  /// first flight with the exact W (in one band picked at random, its energy times the band count); the ray
+  /// goes on in every band along one direction drawn from the opening's far-field pattern instead of W(x,·)
+  /// (RoomOccluders::scatterPortal: positive weights along openings, one per band). The later flights keep
+  /// W's marginals (the energy through each point, the opening's radiation pattern) but not its correlation
+  /// of position and direction. In a reverberant room the signed, single-band rays of the plain estimator are
+  /// noise that outlives the near field (a listener's band could sum negative); the portal's rays carry no
+  /// sign and every band. Listeners whose next-event estimate is not taken (NaN: the kernel swings through
+  /// too many periods across the sphere) score the portal's first flight.
   bool portal = false;
   const EmissionTarget* aim = nullptr;  ///< null: rays leave uniformly over the sphere
 };
