@@ -10,6 +10,7 @@
 #include "diffray/geometry/embree_scene.h"
 #include "diffray/transport/room_lanes.h"
 #include "diffray/transport/room_materials.h"
+#include "diffray/transport/room_tracer_core.h"
 
 namespace diffray::transport {
 
@@ -27,527 +28,301 @@ constexpr double kGenerators[2] = {0.7548776662466927, 0.5698402909980532};
 constexpr double kGenerators5[5] = {0.8812714616335696, 0.7766393890897682, 0.6844301295853426,
                                     0.6031687406857283, 0.5315553977157913};
 
-struct Tracer {
-  const room::Room& room;
-  const RoomGeometry& geometry;
-  const RoomTraceOptions& opt;
-  MaterialTable materials;
-  std::vector<receiver::Sphere> spheres;
-  /// Two listener spheres for score's pre-test, one per lane (an unused lane: a sphere no segment nears).
-  struct ListenerPair {
-    Pair x, y, z;         ///< centres (m)
-    Pair r_slack;         ///< radii plus a margin (m)
-    Pair r2_plus_margin;  ///< r² plus a margin (m²)
-  };
-  std::vector<ListenerPair> listener_pairs;
-  int pair_count = 0;  ///< listener_pairs.size(), as the pre-test's loop bound
-  int bands = 0, bins = 0;
-  double ray_energy = 0.0;  ///< emitted energy per ray per band before the directivity weight
-  double max_path_m = 0.0;
-  double eps_m = 0.0;
-  std::vector<double> air_table;     ///< [bin][band]: e^{−m_b·s_k}, s_k the path length at bin k's centre
-  std::vector<double> air_centre_m;  ///< s_k
-  std::vector<int> floor_plane;      ///< per occluder: the mirror plane of a door's floor (sill), or −1
-  std::vector<char> special;         ///< per triangle: an occluder's, an opening or absorbing (the cold path)
-
-  // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
-  // Segments of paths the image sources cover (`skip`) are counted as crossings but not scored, nor by the
-  // listeners whose score next-event estimation took (bit l of `skip_listeners`).
-  // NB: the band count when known at compile time (the loops over bands unroll and vectorise), else 0.
-  // `energy` times `scale` is the path's band energies (Octaves hold them relative to the emitted level).
-  template <int NB, class Energy>
-  void score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
-             const Energy& energy, double scale, bool skip, std::uint64_t skip_listeners = 0) const {
-    // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
-    // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
-    // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
-    // the three signed excesses is then negative (each with a margin above its rounding, so that the test
-    // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
-    if (pair_count == 0) return;
-    const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
-    const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
-    const auto excessOf = [&](const ListenerPair& lp) {
-      const Pair ox = px - lp.x, oy = py - lp.y, oz = pz - lp.z;
-      const Pair b = ox * dx + oy * dy + oz * dz;
-      const Pair off_line = ox * ox + oy * oy + oz * oz - b * b - lp.r2_plus_margin;
-      const Pair behind = b - lp.r_slack, beyond = -b - te - lp.r_slack;
-      const Pair outside = behind > beyond ? behind : beyond;
-      return off_line > outside ? off_line : outside;
-    };
-    // The least excess per lane (a NaN excess is never taken: it fails the comparison).
-    const Pair one = {1.0, 1.0};
-    Pair closest = lesser(excessOf(listener_pairs[0]), one);
-    for (int k = 1; k < pair_count; ++k) closest = lesser(excessOf(listener_pairs[k]), closest);
-    if (!anySignBit(closest)) return;  // every excess ≥ 0 (a −0 goes on: chordSpan decides)
-    // Some sphere may be near (one segment in ~20 on the shoebox): the pairs again, and chordSpan only for
-    // the lanes whose excess is negative. Copies: chordSpan takes addresses, which would otherwise keep the
-    // loop's pos and dir in memory.
-    const double o[3] = {pos.x(), pos.y(), pos.z()}, d[3] = {dir.x(), dir.y(), dir.z()};
-    for (int k = 0; k < pair_count; ++k) {
-      const int near = signBits(excessOf(listener_pairs[k]));
-      if (near & 1) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k), o, d, t_end, path_m, energy, scale, skip,
-                                      skip_listeners);
-      if (near & 2) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k) + 1, o, d, t_end, path_m, energy, scale,
-                                      skip, skip_listeners);
-    }
-  }
-
-  // score's part for listener l, whose sphere the segment may cross.
-  template <int NB, class Energy>
-  void scoreListener(RoomTraceResult& acc, std::size_t l, const double* o, const double* d, double t_end,
-                     double path_m, const Energy& energy, double scale, bool skip,
-                     std::uint64_t skip_listeners) const {
-    const int nb = NB > 0 ? NB : bands;
-    double t_in, t_out;
-    if (!spheres[l].chordSpan(o, d, 0.0, t_end, t_in, t_out)) return;
-    ++acc.crossings[l];
-    if (skip || (l < 64 && (skip_listeners >> l & 1u))) return;
-    const double s_mid = path_m + 0.5 * (t_in + t_out);
-    const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
-    if (bin < 0) return;
-    // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
-    const double w = scale * spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
-    // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
-    // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
-    // error below 2e-8, no exp per band in the hot loop.
-    const double ds = s_mid - air_centre_m[bin];
-    const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
-    double* row = acc.listeners[l].openRow(bin);
-    for (int b = 0; b < nb; ++b) {
-      const double x = opt.air_m_per_m[b] * ds;
-      row[b] += energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
-    }
-  }
-
-  // The nearest surface along origin + t·dir: rtcIntersect1 straight on the Embree scene (this loop's
-  // hottest call), or the intersector (brute force, tests). `interior`: the hit's barycentrics are all
-  // above 1e-4, far from any edge compared with float rounding.
-  struct SegmentHit {
-    double t = 0.0;
-    int triangle = -1;
-    bool interior = false;
-    bool valid() const { return triangle >= 0; }
-  };
-  SegmentHit cast(const Vec3& o, const Vec3& d) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
-    return cast(o, d, context, rh);
-  }
-  // `rh`: a ray from makeRayHit (tnear 0), re-aimed here for each segment of a path (aimRayHit).
-  SegmentHit cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context, RTCRayHit& rh) const {
-    SegmentHit h;
-    const RTCScene scene = geometry.embreeScene();
-    if (!scene) {
-      const geometry::Hit g = geometry.intersector().intersect(geometry::Ray{o, d, 0.0, 1e300});
-      h.t = g.t;
-      h.triangle = g.valid() ? g.triangle : -1;
-      return h;
-    }
-    geometry::aimRayHit(rh, o, d);
-    rtcIntersect1(scene, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-    h.t = rh.ray.tfar;
-    h.triangle = static_cast<int>(rh.hit.primID);
-    h.interior = std::min(std::min(rh.hit.u, rh.hit.v), 1.0f - rh.hit.u - rh.hit.v) > 1e-4f;
-    return h;
-  }
-
-  // The energy the ray holds over the segment [path_m, path_m + length), spread over the time bins it
-  // spans (air absorption at the segment's start: the pilot needs the decay, not a precise level).
-  template <class Energy>
-  void addInFlight(RoomTraceResult& acc, double path_m, double length, const Energy& energy, double scale) const {
-    receiver::EnergyHistogram& h = acc.in_flight;
-    const double c = opt.speed_of_sound_m_s;
-    const double t_start = path_m / c, t_stop = std::min((path_m + length) / c, h.lengthSeconds());
-    int bin = h.binOf(t_start);
-    if (bin < 0) return;
-    // Bins by index, so that a start on a bin edge can never stall the loop.
-    for (double t0 = t_start; bin < h.bins() && t0 < t_stop; ++bin) {
-      const double edge = std::min(t_stop, (bin + 1) * h.binSeconds());
-      if (edge > t0)
-        for (int b = 0; b < bands; ++b) h.add(b, bin, scale * energy[b] * std::exp(-opt.air_m_per_m[b] * path_m) * (edge - t0));
-      t0 = std::max(t0, edge);
-    }
-  }
-
-  // The state of one path: where it is, where it goes, its band energies (a single band after a WBSDF
-  // occluder split it, `band` ≥ 0 with wavelength `lambda_m`), and what decides its scoring.
-  struct Path {
-    Vec3 pos, dir;
-    core::BandArray e;
-    double path_m = 0.0;
-    int order = 0;
-    bool specular_chain = true;
-    int band = -1;
-    double lambda_m = 0.0;
-    int diffractions = 0;
-    double e_start = 0.0;  ///< the level Russian roulette is relative to
-    std::uint64_t skip_next_score = 0;  ///< listeners (bit l) whose next-segment score next-event estimation took
-    std::uint64_t skip_after_floor = 0;  ///< ... and whose score after a specular bounce off `floor_plane`
-    int floor_plane = -1;
-    bool has_qmc = false;  ///< qmc[] holds the first occluder's quasi-random uniforms (shift x2, band)
-    double qmc[3] = {0, 0, 0};
-  };
-
-  void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
-                 const core::BandArray& energy0, const double* qmc = nullptr) const {
-    Path s{start, dir0, energy0};
-    s.e_start = *std::max_element(s.e.begin(), s.e.begin() + bands);
-    if (qmc) {
-      s.has_qmc = true;
-      std::copy(qmc, qmc + 3, s.qmc);
-    }
-    // Octave bands (8, every shipped room) get the hot loop with a fixed band count.
-    if (bands == 8) follow<8>(acc, rng, s);
-    else follow<0>(acc, rng, s);
-  }
-
-  // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
-  // times their count keeps every band unbiased), at one frequency drawn uniformly inside the band
-  // (design.md §2). One band rather than a split into all of them: a split multiplies the work after a
-  // doorway by the band count (5× slower on two-rooms) for the same variance per unit of time.
-  void chooseBand(core::FastRng& rng, Path& s) const {
-    int live[core::kMaxBands], n = 0;
-    for (int b = 0; b < bands; ++b)
-      if (s.e[b] != 0.0) live[n++] = b;
-    if (n == 0) return;
-    // One uniform picks the band and, rescaled within the band's slot, the frequency.
-    const double x = (s.has_qmc ? s.qmc[2] : rng.uniform()) * n;
-    const int pick = std::min(n - 1, static_cast<int>(x));
-    const int b = live[pick];
-    const double e_b = s.e[b] * n;
-    s.e = core::bandFill(0.0);
-    s.e[b] = e_b;
-    s.band = b;
-    const double f = room.bands.lowerHz(b) + std::min(1.0, x - pick) * (room.bands.upperHz(b) - room.bands.lowerHz(b));
-    s.lambda_m = opt.speed_of_sound_m_s / f;
-  }
-
-  // Next-event estimation at occluder k (RoomOccluders::expectedSphereScore): every listener in view of the
-  // hit point gets the expected score of the scattered ray's next segment, at its arrival time, with the
-  // air absorption of the whole path. Returns the listeners it served (bit l; the first 64), whose score
-  // of that segment the ray must then skip; the others score it as usual.
-  std::uint64_t nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
-                          std::uint64_t& floor_served) const {
-    const int b = s.band;
-    const double xi[2] = {rng.uniform(), rng.uniform()};  // a door's vertical shift (expectedSphereScore)
-    std::uint64_t served = 0;
-    floor_served = 0;
-    if (floor_plane[k] >= 0)
-      for (std::size_t l = 0; l < spheres.size() && l < 64; ++l)
-        if (nextEventViaFloor(acc, s, k, n_in, l, xi)) floor_served |= std::uint64_t{1} << l;
-    for (std::size_t l = 0; l < spheres.size() && l < 64; ++l) {
-      const Vec3 q = spheres[l].centre - s.pos;
-      const double L = q.norm();
-      if (!(L > spheres[l].radius_m)) continue;
-      const Vec3 qh = q / L;
-      // In view: nothing between the hit point (just off the occluder's plane, on the listener's side) and
-      // the sphere's near side.
-      const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
-      const SegmentHit h = cast(from, qh);
-      // Hidden listeners are served too: nothing of the segment reaches them straight (estimate 0).
-      served |= std::uint64_t{1} << l;
-      if (h.valid() && h.t < L - spheres[l].radius_m) continue;
-      const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, spheres[l].centre, spheres[l].radius_m, xi);
-      if (std::isnan(v)) {
-        served &= ~(std::uint64_t{1} << l);
-        continue;
-      }
-      if (v == 0.0) continue;
-      const double path = s.path_m + L;
-      const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
-      if (bin < 0) continue;
-      acc.listeners[l].add(b, bin, s.e[b] * v * std::exp(-opt.air_m_per_m[b] * path));
-    }
-    return served;
-  }
-
-  // Next-event estimation through one specular bounce off a door's floor (the sill's mirror plane): the
-  // listener's image below the floor seen from the hit point, if that line meets the floor on a triangle of
-  // its plane and the reflected leg reaches the listener, times the floor's specular reflectance
-  // (1 − α)(1 − s). True when it served the listener (the ray then skips its score after such a bounce).
-  bool nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const Vec3& n_in, std::size_t l,
-                         const double* xi) const {
-    const MirrorPlane& fp = geometry.planes()[floor_plane[k]];
-    const receiver::Sphere& sp = spheres[l];
-    const double height = fp.normal.dot(sp.centre) - fp.offset;
-    const Vec3 image = sp.centre - 2.0 * height * fp.normal;
-    const Vec3 q = image - s.pos;
-    const double L = q.norm();
-    if (!(L > sp.radius_m)) return false;
-    const Vec3 qh = q / L;
-    const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
-    const SegmentHit h = cast(from, qh);
-    if (!h.valid() || geometry.triangle(h.triangle).plane != floor_plane[k]) return true;  // no floor there
-    const Vec3 r = from + h.t * qh, leg = sp.centre - r;
-    const double leg_len = leg.norm();
-    const Vec3 up = fp.normal.dot(leg) > 0.0 ? fp.normal : Vec3(-fp.normal);
-    const SegmentHit back = cast(r + eps_m * up, leg / leg_len);
-    if (back.valid() && back.t < leg_len - sp.radius_m) return true;  // the reflected leg is blocked
-    const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, image, sp.radius_m, xi);
-    if (std::isnan(v)) return false;
-    const room::Material& m = room.materials[geometry.triangle(h.triangle).material];
-    const double reflect = (1.0 - m.absorption[s.band]) * (1.0 - m.scattering[s.band]);
-    const double path = s.path_m + L;
-    const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
-    if (v != 0.0 && bin >= 0)
-      acc.listeners[l].add(s.band, bin, s.e[s.band] * v * reflect * std::exp(-opt.air_m_per_m[s.band] * path));
-    return true;
-  }
-
-  // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
-  bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
-    ++acc.occluder_events;
-    if (opt.next_event && opt.occluders->nextEventSupported(k)) {
-      s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
-      s.floor_plane = floor_plane[k];
-    }
-    double xi[4];
-    for (double& v : xi) v = rng.uniform();
-    if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
-    const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
-    if (!sc.alive) {
-      if (sc.evanescent) ++acc.evanescent;
-      return false;
-    }
-    const room::Occluder& o = opt.occluders->occluder(k);
-    double w = sc.weight;
-    if (o.reflect) w *= 1.0 - room.materials[o.material].absorption[s.band];
-    s.e[s.band] *= w;
-    s.dir = sc.dir;
-    s.pos += (sc.dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;  // off the plane, on the side it leaves to
-    s.specular_chain = false;
-    ++s.order;
-    ++s.diffractions;
-    return true;
-  }
-
-  // The portal at occluder k (RoomTraceOptions::portal) for a path that carries every band: next-event
-  // estimation in one band picked uniformly (its energy times the live band count, so each band is served
-  // in expectation), at one frequency in it; the path goes on in every band along one direction from
-  // RoomOccluders::scatterPortal, each band at a frequency at the same place in its band. False when it ends.
-  bool portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
-    ++acc.occluder_events;
-    int live[core::kMaxBands], n = 0;
-    for (int b = 0; b < bands; ++b)
-      if (s.e[b] != 0.0) live[n++] = b;
-    if (n == 0) return false;
-    const bool first = s.has_qmc && s.diffractions == 0;
-    const double x = (first ? s.qmc[2] : rng.uniform()) * n;
-    const int pick = std::min(n - 1, static_cast<int>(x));
-    const double place = std::min(1.0, x - pick);
-    double lambda[core::kMaxBands];
-    for (int i = 0; i < n; ++i) {
-      const int b = live[i];
-      lambda[i] = opt.speed_of_sound_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
-    }
-    Path one = s;
-    one.band = live[pick];
-    one.lambda_m = lambda[pick];
-    one.e[one.band] = s.e[one.band] * n;
-    s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor);
-    s.floor_plane = floor_plane[k];
-    double xi[4];
-    for (double& v : xi) v = rng.uniform();
-    if (first) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
-    double w[core::kMaxBands];
-    const RoomOccluders::PortalScatter sc = opt.occluders->scatterPortal(k, s.pos, s.dir, lambda, n, pick, xi, w);
-    if (!sc.alive) {
-      if (sc.evanescent) ++acc.evanescent;
-      return false;
-    }
-    core::BandArray e = core::bandFill(0.0);
-    for (int i = 0; i < n; ++i) e[live[i]] = s.e[live[i]] * w[i];
-    s.e = e;
-    s.dir = sc.dir;
-    s.pos += (sc.dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;  // off the plane, on the side it leaves to
-    s.specular_chain = false;
-    ++s.order;
-    ++s.diffractions;
-    return true;
-  }
-
-  // Follows a path until it ends. The hot state lives in locals (not in the Path, which the occluder code
-  // takes by reference and would make every store in the loop a possible alias): 5 % of the room bench.
-  template <int NB>
-  void follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
-    Vec3 pos = s.pos, dir = s.dir;
-    // Octaves carry the energies relative to the emitted level (scores multiply it back).
-    const double scale = NB == 8 && s.e_start > 0.0 && std::isfinite(s.e_start) ? s.e_start : 1.0;
-    typename EnergyOf<NB>::type e = carried<NB>(s.e, scale);
-    double path_m = s.path_m;
-    int order = s.order;
-    bool specular_chain = s.specular_chain;
-    std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit ray = geometry::makeRayHit(pos, dir, 0.0, 1e300);
-    // Options read once (opt is a reference: each use would be two loads). Roulette's threshold (on the
-    // Path's energies, and relative to `scale` on e), the latter also as four floats rounded up, so that a
-    // band at or above them is at or above it.
-    const bool in_flight = opt.in_flight;
-    const int skip_order = opt.skip_order;
-    const double threshold = opt.roulette_level * s.e_start, threshold_e = threshold / scale;
-    float threshold_f = static_cast<float>(threshold_e);
-    if (threshold_f < threshold_e) threshold_f = std::nextafter(threshold_f, HUGE_VALF);
-    const Quad threshold4 = {threshold_f, threshold_f, threshold_f, threshold_f};
-    for (;;) {
-      // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
-      // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
-      SegmentHit hit = cast(pos, dir, context, ray);
-      ++acc.segments;
-      if (!hit.valid()) {
-        // Embree's fast (non-watertight) traversal can let a ray through the shared edge of two triangles:
-        // about one ray in 30,000 in a finely tessellated room. Escapes are rare, so look again along a
-        // direction turned by ~1e-6 rad before believing one (a real opening lets the retry out too).
-        const Vec3 nudged = (dir + 1e-6 * Vec3(dir.y() - dir.z(), dir.z() - dir.x(), dir.x() - dir.y())).normalized();
-        hit = cast(pos, nudged, context, ray);
-        ++acc.segments;
-      }
-      // Embree's distance is float. Well inside a triangle the hit point is put back on its plane by a
-      // projection (no division on the critical path); near an edge the distance is refined in double on
-      // the plane instead, so a hit within float rounding of a corner cannot land outside the
-      // neighbouring wall (which would let the ray slip out).
-      double t_hit = 1e300;
-      bool project = false;
-      if (hit.valid()) {
-        if (hit.interior) {
-          t_hit = hit.t;
-          project = true;
-        } else {
-          t_hit = geometry.planeDistance(hit.triangle, pos, dir);
-          if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
-        }
-      }
-      const double remaining = max_path_m - path_m;
-      const double t_end = std::min(t_hit, remaining);
-      score<NB>(acc, pos, dir, t_end, path_m, e, scale, specular_chain && order <= skip_order, skip_next);
-      skip_next = 0;
-      if (in_flight) addInFlight(acc, path_m, t_end, e, scale);
-      if (!hit.valid()) {
-        ++acc.escaped;
-        return;
-      }
-      if (t_hit >= remaining) {
-        ++acc.timed_out;
-        return;
-      }
-      path_m += t_hit;
-      const TrianglePlane& tri = geometry.triangle(hit.triangle);
-      const double dn = tri.normal.dot(dir);
-      // The projection's distance off the plane, (n·pos − offset) + t·(n·dir) of the old pos (so the chain
-      // from Embree's t is short), taken off below together with the offset off the surface.
-      double off_plane = project ? tri.normal.dot(pos) - tri.offset + t_hit * dn : 0.0;
-      pos += t_hit * dir;
-      std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
-      if (skip_after_floor) {
-        after_floor = skip_after_floor;
-        skip_after_floor = 0;
-      }
-      const int m = tri.material;
-      // The normal facing the ray is side·n; the offsets off the surface below are ±eps_m along it.
-      const double side = dn < 0.0 ? 1.0 : -1.0;
-      if (special[hit.triangle]) {  // the cold cases: an occluder, an opening, a surface absorbing all
-        pos -= off_plane * tri.normal;
-        off_plane = 0.0;  // applied: a surface event below must not take it off again
-        const Vec3 n_in = side * tri.normal;
-        if (opt.occluders && s.diffractions < opt.max_diffractions) {
-          if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
-            // The occluder code works on the Path.
-            s.e = asBands(e, scale);
-            s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
-            if (opt.portal && opt.next_event && opt.occluders->nextEventSupported(k)) {
-              if (!portalAtOccluder(acc, rng, s, k, n_in)) return;
-            } else {
-              if (s.band < 0) chooseBand(rng, s);
-              if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
-            }
-            if (!roulette<0>(acc, rng, s.e, threshold)) return;
-            e = carried<NB>(s.e, scale);
-            pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
-            skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
-            continue;
-          }
-        }
-        if (materials.opening[m]) {  // a hole: go on as if nothing were there
-          pos -= eps_m * n_in;
-          continue;
-        }
-        if (materials.absorbing[m]) return;
-      }
-      // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
-      // per-band weights (MaterialTable).
-      ++order;
-      const double p_reflect = materials.p_reflect[m];
-      if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
-        const double p_diffuse = materials.p_diffuse[m];
-        if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
-          weigh<NB>(e, materials.w_diffuse, materials.octave_diffuse, m);
-          dir = sampleLambert(side * tri.normal, [&rng] { return rng.uniform(); });
-          specular_chain = false;
-        } else {
-          weigh<NB>(e, materials.w_specular, materials.octave_specular, m);
-          dir -= (2.0 * dn) * tri.normal;
-          if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
-        }
-        pos += (side * eps_m - off_plane) * tri.normal;  // off the surface, on the side the ray now travels
-      } else {
-        weigh<NB>(e, materials.w_transmit, materials.octave_transmit, m);
-        specular_chain = false;
-        pos -= (side * eps_m + off_plane) * tri.normal;
-      }
-      if (!roulette<NB>(acc, rng, e, threshold_e, threshold4)) return;
-    }
-  }
-
-  // Russian roulette relative to the emitted energy (unbiased: survivors are divided by their survival
-  // probability); false when the path ends. The level is the largest |band energy| (WBSDF weights are
-  // signed) and leaves air absorption out (it is applied at scoring): an upper bound of the attenuated
-  // level, so rays live a little longer at high frequencies, and no exp per bounce. `threshold`: the
-  // roulette level times the emitted level; `threshold4`: the same as floats rounded up (octaves only).
-  template <int NB>
-  bool roulette(RoomTraceResult& acc, core::FastRng& rng, typename EnergyOf<NB>::type& e, double threshold,
-                Quad threshold4 = Quad{}) const {
-    double level = 0.0;
-    if constexpr (NB == 8) {
-      const Quad m = maxAbs(e);
-      // The common case, some band at or above the threshold (rounded up to a float), in one compare.
-      if (anyLane(m >= threshold4)) return true;
-      level = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
-    } else {
-      for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
-    }
-    if (level >= threshold) return true;
-    const double q = level / threshold;
-    if (!(rng.uniform() < q)) {
-      ++acc.roulette_killed;
-      return false;
-    }
-    if constexpr (NB == 8) {
-      const float inv = static_cast<float>(1.0 / q);
-      e.lo *= inv;
-      e.hi *= inv;
-    } else {
-      for (int b = 0; b < bands; ++b) e[b] /= q;
-    }
-    return true;
-  }
-
-  // Multiplies the band energies by material m's weights for one event (w8: the same as Octaves).
-  template <int NB>
-  void weigh(typename EnergyOf<NB>::type& e, const std::vector<core::BandArray>& w, const std::vector<Octaves>& w8,
-             int m) const {
-    if constexpr (NB == 8) {
-      e.lo *= w8[m].lo;
-      e.hi *= w8[m].hi;
-    } else {
-      for (int b = 0; b < bands; ++b) e[b] *= w[m][b];
-    }
-  }
-};
 
 }  // namespace
+
+namespace detail {
+
+template <int NB, class Energy>
+void Tracer::score(RoomTraceResult& acc, const Vec3& pos, const Vec3& dir, double t_end, double path_m,
+                 const Energy& energy, double scale, bool skip, std::uint64_t skip_listeners) const {
+  // Most segments miss every listener: first a branchless test over all of them, then one well-predicted
+  // branch, and chordSpan only when some sphere may be near. A segment meets a sphere only if its line
+  // passes within r of the centre and the centre projects within r of [0, t_end] on it: the largest of
+  // the three signed excesses is then negative (each with a margin above its rounding, so that the test
+  // never rejects a segment chordSpan would accept). Two spheres at a time (a Pair: one SSE2 register).
+  if (pair_count == 0) return;
+  const Pair px = {pos.x(), pos.x()}, py = {pos.y(), pos.y()}, pz = {pos.z(), pos.z()};
+  const Pair dx = {dir.x(), dir.x()}, dy = {dir.y(), dir.y()}, dz = {dir.z(), dir.z()}, te = {t_end, t_end};
+  const auto excessOf = [&](const ListenerPair& lp) {
+    const Pair ox = px - lp.x, oy = py - lp.y, oz = pz - lp.z;
+    const Pair b = ox * dx + oy * dy + oz * dz;
+    const Pair off_line = ox * ox + oy * oy + oz * oz - b * b - lp.r2_plus_margin;
+    const Pair behind = b - lp.r_slack, beyond = -b - te - lp.r_slack;
+    const Pair outside = behind > beyond ? behind : beyond;
+    return off_line > outside ? off_line : outside;
+  };
+  // The least excess per lane (a NaN excess is never taken: it fails the comparison).
+  const Pair one = {1.0, 1.0};
+  Pair closest = lesser(excessOf(listener_pairs[0]), one);
+  for (int k = 1; k < pair_count; ++k) closest = lesser(excessOf(listener_pairs[k]), closest);
+  if (!anySignBit(closest)) return;  // every excess ≥ 0 (a −0 goes on: chordSpan decides)
+  // Some sphere may be near (one segment in ~20 on the shoebox): the pairs again, and chordSpan only for
+  // the lanes whose excess is negative. Copies: chordSpan takes addresses, which would otherwise keep the
+  // loop's pos and dir in memory.
+  const double o[3] = {pos.x(), pos.y(), pos.z()}, d[3] = {dir.x(), dir.y(), dir.z()};
+  for (int k = 0; k < pair_count; ++k) {
+    const int near = signBits(excessOf(listener_pairs[k]));
+    if (near & 1) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k), o, d, t_end, path_m, energy, scale, skip,
+                                    skip_listeners);
+    if (near & 2) scoreListener<NB>(acc, 2 * static_cast<std::size_t>(k) + 1, o, d, t_end, path_m, energy, scale,
+                                    skip, skip_listeners);
+  }
+}
+
+template <int NB, class Energy>
+void Tracer::scoreListener(RoomTraceResult& acc, std::size_t l, const double* o, const double* d, double t_end,
+                         double path_m, const Energy& energy, double scale, bool skip,
+                         std::uint64_t skip_listeners) const {
+  const int nb = NB > 0 ? NB : bands;
+  double t_in, t_out;
+  if (!spheres[l].chordSpan(o, d, 0.0, t_end, t_in, t_out)) return;
+  ++acc.crossings[l];
+  if (skip || (l < 64 && (skip_listeners >> l & 1u))) return;
+  const double s_mid = path_m + 0.5 * (t_in + t_out);
+  const int bin = acc.listeners[l].binOf(s_mid / opt.speed_of_sound_m_s);
+  if (bin < 0) return;
+  // Track-length estimator over the cross-section: fluence (receiver/sphere.h).
+  const double w = scale * spheres[l].chordWeight(t_out - t_in) / spheres[l].crossSection();
+  // Air: e^{−m s} = (tabulated e^{−m s_k} at the bin's centre s_k)·e^{−m (s − s_k)}, the second factor
+  // by its Taylor series to x³/6 with x = m·(s − s_k), |x| ≤ m·c·bin/2 (< 0.005 at 8 kHz): relative
+  // error below 2e-8, no exp per band in the hot loop.
+  const double ds = s_mid - air_centre_m[bin];
+  const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
+  double* row = acc.listeners[l].openRow(bin);
+  for (int b = 0; b < nb; ++b) {
+    const double x = opt.air_m_per_m[b] * ds;
+    row[b] += energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
+  }
+}
+
+Tracer::SegmentHit Tracer::cast(const Vec3& o, const Vec3& d) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = geometry::makeRayHit(o, d, 0.0, 1e300);
+  return cast(o, d, context, rh);
+}
+
+Tracer::SegmentHit Tracer::cast(const Vec3& o, const Vec3& d, RTCIntersectContext& context, RTCRayHit& rh) const {
+  SegmentHit h;
+  const RTCScene scene = geometry.embreeScene();
+  if (!scene) {
+    const geometry::Hit g = geometry.intersector().intersect(geometry::Ray{o, d, 0.0, 1e300});
+    h.t = g.t;
+    h.triangle = g.valid() ? g.triangle : -1;
+    return h;
+  }
+  geometry::aimRayHit(rh, o, d);
+  rtcIntersect1(scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  h.t = rh.ray.tfar;
+  h.triangle = static_cast<int>(rh.hit.primID);
+  h.interior = std::min(std::min(rh.hit.u, rh.hit.v), 1.0f - rh.hit.u - rh.hit.v) > 1e-4f;
+  return h;
+}
+
+template <class Energy>
+void Tracer::addInFlight(RoomTraceResult& acc, double path_m, double length, const Energy& energy, double scale) const {
+  receiver::EnergyHistogram& h = acc.in_flight;
+  const double c = opt.speed_of_sound_m_s;
+  const double t_start = path_m / c, t_stop = std::min((path_m + length) / c, h.lengthSeconds());
+  int bin = h.binOf(t_start);
+  if (bin < 0) return;
+  // Bins by index, so that a start on a bin edge can never stall the loop.
+  for (double t0 = t_start; bin < h.bins() && t0 < t_stop; ++bin) {
+    const double edge = std::min(t_stop, (bin + 1) * h.binSeconds());
+    if (edge > t0)
+      for (int b = 0; b < bands; ++b) h.add(b, bin, scale * energy[b] * std::exp(-opt.air_m_per_m[b] * path_m) * (edge - t0));
+    t0 = std::max(t0, edge);
+  }
+}
+
+void Tracer::tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
+                     const core::BandArray& energy0, const double* qmc) const {
+  Path s{start, dir0, energy0};
+  s.e_start = *std::max_element(s.e.begin(), s.e.begin() + bands);
+  if (qmc) {
+    s.has_qmc = true;
+    std::copy(qmc, qmc + 3, s.qmc);
+  }
+  // Octave bands (8, every shipped room) get the hot loop with a fixed band count.
+  if (bands == 8) follow<8>(acc, rng, s);
+  else follow<0>(acc, rng, s);
+}
+
+template <int NB>
+void Tracer::follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
+  Vec3 pos = s.pos, dir = s.dir;
+  // Octaves carry the energies relative to the emitted level (scores multiply it back).
+  const double scale = NB == 8 && s.e_start > 0.0 && std::isfinite(s.e_start) ? s.e_start : 1.0;
+  typename EnergyOf<NB>::type e = carried<NB>(s.e, scale);
+  double path_m = s.path_m;
+  int order = s.order;
+  bool specular_chain = s.specular_chain;
+  std::uint64_t skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit ray = geometry::makeRayHit(pos, dir, 0.0, 1e300);
+  // Options read once (opt is a reference: each use would be two loads). Roulette's threshold (on the
+  // Path's energies, and relative to `scale` on e), the latter also as four floats rounded up, so that a
+  // band at or above them is at or above it.
+  const bool in_flight = opt.in_flight;
+  const int skip_order = opt.skip_order;
+  const double threshold = opt.roulette_level * s.e_start, threshold_e = threshold / scale;
+  float threshold_f = static_cast<float>(threshold_e);
+  if (threshold_f < threshold_e) threshold_f = std::nextafter(threshold_f, HUGE_VALF);
+  const Quad threshold4 = {threshold_f, threshold_f, threshold_f, threshold_f};
+  for (;;) {
+    // tnear 0: the origin sits eps_m off the surface it left, on the side it travels (15× Embree's float
+    // rounding), so that surface cannot be hit again, while a wall meeting it at a corner still can.
+    SegmentHit hit = cast(pos, dir, context, ray);
+    ++acc.segments;
+    if (!hit.valid()) {
+      // Embree's fast (non-watertight) traversal can let a ray through the shared edge of two triangles:
+      // about one ray in 30,000 in a finely tessellated room. Escapes are rare, so look again along a
+      // direction turned by ~1e-6 rad before believing one (a real opening lets the retry out too).
+      const Vec3 nudged = (dir + 1e-6 * Vec3(dir.y() - dir.z(), dir.z() - dir.x(), dir.x() - dir.y())).normalized();
+      hit = cast(pos, nudged, context, ray);
+      ++acc.segments;
+    }
+    // Embree's distance is float. Well inside a triangle the hit point is put back on its plane by a
+    // projection (no division on the critical path); near an edge the distance is refined in double on
+    // the plane instead, so a hit within float rounding of a corner cannot land outside the
+    // neighbouring wall (which would let the ray slip out).
+    double t_hit = 1e300;
+    bool project = false;
+    if (hit.valid()) {
+      if (hit.interior) {
+        t_hit = hit.t;
+        project = true;
+      } else {
+        t_hit = geometry.planeDistance(hit.triangle, pos, dir);
+        if (!(t_hit >= 0.0 && t_hit < 1e300)) t_hit = hit.t;
+      }
+    }
+    const double remaining = max_path_m - path_m;
+    const double t_end = std::min(t_hit, remaining);
+    score<NB>(acc, pos, dir, t_end, path_m, e, scale, specular_chain && order <= skip_order, skip_next);
+    skip_next = 0;
+    if (in_flight) addInFlight(acc, path_m, t_end, e, scale);
+    if (!hit.valid()) {
+      ++acc.escaped;
+      return;
+    }
+    if (t_hit >= remaining) {
+      ++acc.timed_out;
+      return;
+    }
+    path_m += t_hit;
+    const TrianglePlane& tri = geometry.triangle(hit.triangle);
+    const double dn = tri.normal.dot(dir);
+    // The projection's distance off the plane, (n·pos − offset) + t·(n·dir) of the old pos (so the chain
+    // from Embree's t is short), taken off below together with the offset off the surface.
+    double off_plane = project ? tri.normal.dot(pos) - tri.offset + t_hit * dn : 0.0;
+    pos += t_hit * dir;
+    std::uint64_t after_floor = 0;  // only the first bounce after an occluder (rare: kept off the common path)
+    if (skip_after_floor) {
+      after_floor = skip_after_floor;
+      skip_after_floor = 0;
+    }
+    const int m = tri.material;
+    // The normal facing the ray is side·n; the offsets off the surface below are ±eps_m along it.
+    const double side = dn < 0.0 ? 1.0 : -1.0;
+    if (special[hit.triangle]) {  // the cold cases: an occluder, an opening, a surface absorbing all
+      pos -= off_plane * tri.normal;
+      off_plane = 0.0;  // applied: a surface event below must not take it off again
+      const Vec3 n_in = side * tri.normal;
+      if (opt.occluders && s.diffractions < opt.max_diffractions) {
+        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
+          // The occluder code works on the Path.
+          s.e = asBands(e, scale);
+          s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
+          if (opt.portal && opt.next_event && opt.occluders->nextEventSupported(k)) {
+            if (!portalAtOccluder(acc, rng, s, k, n_in)) return;
+          } else {
+            if (s.band < 0) chooseBand(rng, s);
+            if (s.band < 0 || !scatterAtOccluder(acc, rng, s, k, n_in)) return;
+          }
+          if (!roulette<0>(acc, rng, s.e, threshold)) return;
+          e = carried<NB>(s.e, scale);
+          pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
+          skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
+          continue;
+        }
+      }
+      if (materials.opening[m]) {  // a hole: go on as if nothing were there
+        pos -= eps_m * n_in;
+        continue;
+      }
+      if (materials.absorbing[m]) return;
+    }
+    // Reflect or transmit, then Lambert or specular, with the material's fixed probabilities and
+    // per-band weights (MaterialTable).
+    ++order;
+    const double p_reflect = materials.p_reflect[m];
+    if (p_reflect >= 1.0 || rng.uniform() < p_reflect) {
+      const double p_diffuse = materials.p_diffuse[m];
+      if (p_diffuse > 0.0 && (p_diffuse >= 1.0 || rng.uniform() < p_diffuse)) {
+        weigh<NB>(e, materials.w_diffuse, materials.octave_diffuse, m);
+        dir = sampleLambert(side * tri.normal, [&rng] { return rng.uniform(); });
+        specular_chain = false;
+      } else {
+        weigh<NB>(e, materials.w_specular, materials.octave_specular, m);
+        dir -= (2.0 * dn) * tri.normal;
+        if (after_floor && tri.plane == s.floor_plane) skip_next = after_floor;  // nextEventViaFloor's
+      }
+      pos += (side * eps_m - off_plane) * tri.normal;  // off the surface, on the side the ray now travels
+    } else {
+      weigh<NB>(e, materials.w_transmit, materials.octave_transmit, m);
+      specular_chain = false;
+      pos -= (side * eps_m + off_plane) * tri.normal;
+    }
+    if (!roulette<NB>(acc, rng, e, threshold_e, threshold4)) return;
+  }
+}
+
+template <int NB>
+bool Tracer::roulette(RoomTraceResult& acc, core::FastRng& rng, typename EnergyOf<NB>::type& e, double threshold,
+                    Quad threshold4) const {
+  double level = 0.0;
+  if constexpr (NB == 8) {
+    const Quad m = maxAbs(e);
+    // The common case, some band at or above the threshold (rounded up to a float), in one compare.
+    if (anyLane(m >= threshold4)) return true;
+    level = std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
+  } else {
+    for (int b = 0; b < bands; ++b) level = std::max(level, std::abs(e[b]));
+  }
+  if (level >= threshold) return true;
+  const double q = level / threshold;
+  if (!(rng.uniform() < q)) {
+    ++acc.roulette_killed;
+    return false;
+  }
+  if constexpr (NB == 8) {
+    const float inv = static_cast<float>(1.0 / q);
+    e.lo *= inv;
+    e.hi *= inv;
+  } else {
+    for (int b = 0; b < bands; ++b) e[b] /= q;
+  }
+  return true;
+}
+
+template <int NB>
+void Tracer::weigh(typename EnergyOf<NB>::type& e, const std::vector<core::BandArray>& w, const std::vector<Octaves>& w8,
+                 int m) const {
+  if constexpr (NB == 8) {
+    e.lo *= w8[m].lo;
+    e.hi *= w8[m].hi;
+  } else {
+    for (int b = 0; b < bands; ++b) e[b] *= w[m][b];
+  }
+}
+
+}  // namespace detail
+
+using detail::Tracer;
 
 RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, int source_index,
                           const RoomTraceOptions& options) {

@@ -1,0 +1,160 @@
+// The WBSDF occluder events of a room path (detail::Tracer, room_tracer_core.h): the band choice of the
+// plain estimator, next-event estimation toward the listeners (directly and via a door's floor), the plain
+// signed scattering and the portal (RoomTraceOptions::portal).
+#include <algorithm>
+#include <cmath>
+
+#include "diffray/geometry/embree_scene.h"
+#include "diffray/transport/room_tracer_core.h"
+
+namespace diffray::transport::detail {
+
+void Tracer::chooseBand(core::FastRng& rng, Path& s) const {
+  int live[core::kMaxBands], n = 0;
+  for (int b = 0; b < bands; ++b)
+    if (s.e[b] != 0.0) live[n++] = b;
+  if (n == 0) return;
+  // One uniform picks the band and, rescaled within the band's slot, the frequency.
+  const double x = (s.has_qmc ? s.qmc[2] : rng.uniform()) * n;
+  const int pick = std::min(n - 1, static_cast<int>(x));
+  const int b = live[pick];
+  const double e_b = s.e[b] * n;
+  s.e = core::bandFill(0.0);
+  s.e[b] = e_b;
+  s.band = b;
+  const double f = room.bands.lowerHz(b) + std::min(1.0, x - pick) * (room.bands.upperHz(b) - room.bands.lowerHz(b));
+  s.lambda_m = opt.speed_of_sound_m_s / f;
+}
+
+std::uint64_t Tracer::nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
+                              std::uint64_t& floor_served) const {
+  const int b = s.band;
+  const double xi[2] = {rng.uniform(), rng.uniform()};  // a door's vertical shift (expectedSphereScore)
+  std::uint64_t served = 0;
+  floor_served = 0;
+  if (floor_plane[k] >= 0)
+    for (std::size_t l = 0; l < spheres.size() && l < 64; ++l)
+      if (nextEventViaFloor(acc, s, k, n_in, l, xi)) floor_served |= std::uint64_t{1} << l;
+  for (std::size_t l = 0; l < spheres.size() && l < 64; ++l) {
+    const Vec3 q = spheres[l].centre - s.pos;
+    const double L = q.norm();
+    if (!(L > spheres[l].radius_m)) continue;
+    const Vec3 qh = q / L;
+    // In view: nothing between the hit point (just off the occluder's plane, on the listener's side) and
+    // the sphere's near side.
+    const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
+    const SegmentHit h = cast(from, qh);
+    // Hidden listeners are served too: nothing of the segment reaches them straight (estimate 0).
+    served |= std::uint64_t{1} << l;
+    if (h.valid() && h.t < L - spheres[l].radius_m) continue;
+    const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, spheres[l].centre, spheres[l].radius_m, xi);
+    if (std::isnan(v)) {
+      served &= ~(std::uint64_t{1} << l);
+      continue;
+    }
+    if (v == 0.0) continue;
+    const double path = s.path_m + L;
+    const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
+    if (bin < 0) continue;
+    acc.listeners[l].add(b, bin, s.e[b] * v * std::exp(-opt.air_m_per_m[b] * path));
+  }
+  return served;
+}
+
+bool Tracer::nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const Vec3& n_in, std::size_t l,
+                             const double* xi) const {
+  const MirrorPlane& fp = geometry.planes()[floor_plane[k]];
+  const receiver::Sphere& sp = spheres[l];
+  const double height = fp.normal.dot(sp.centre) - fp.offset;
+  const Vec3 image = sp.centre - 2.0 * height * fp.normal;
+  const Vec3 q = image - s.pos;
+  const double L = q.norm();
+  if (!(L > sp.radius_m)) return false;
+  const Vec3 qh = q / L;
+  const Vec3 from = s.pos + (qh.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
+  const SegmentHit h = cast(from, qh);
+  if (!h.valid() || geometry.triangle(h.triangle).plane != floor_plane[k]) return true;  // no floor there
+  const Vec3 r = from + h.t * qh, leg = sp.centre - r;
+  const double leg_len = leg.norm();
+  const Vec3 up = fp.normal.dot(leg) > 0.0 ? fp.normal : Vec3(-fp.normal);
+  const SegmentHit back = cast(r + eps_m * up, leg / leg_len);
+  if (back.valid() && back.t < leg_len - sp.radius_m) return true;  // the reflected leg is blocked
+  const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, image, sp.radius_m, xi);
+  if (std::isnan(v)) return false;
+  const room::Material& m = room.materials[geometry.triangle(h.triangle).material];
+  const double reflect = (1.0 - m.absorption[s.band]) * (1.0 - m.scattering[s.band]);
+  const double path = s.path_m + L;
+  const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
+  if (v != 0.0 && bin >= 0)
+    acc.listeners[l].add(s.band, bin, s.e[s.band] * v * reflect * std::exp(-opt.air_m_per_m[s.band] * path));
+  return true;
+}
+
+void Tracer::leaveOccluder(Path& s, const Vec3& dir, const Vec3& n_in) const {
+  s.dir = dir;
+  s.pos += (dir.dot(n_in) > 0.0 ? eps_m : -eps_m) * n_in;
+  s.specular_chain = false;
+  ++s.order;
+  ++s.diffractions;
+}
+
+bool Tracer::scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
+  ++acc.occluder_events;
+  if (opt.next_event && opt.occluders->nextEventSupported(k)) {
+    s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
+    s.floor_plane = floor_plane[k];
+  }
+  double xi[4];
+  for (double& v : xi) v = rng.uniform();
+  if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
+  const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
+  if (!sc.alive) {
+    if (sc.evanescent) ++acc.evanescent;
+    return false;
+  }
+  const room::Occluder& o = opt.occluders->occluder(k);
+  double w = sc.weight;
+  if (o.reflect) w *= 1.0 - room.materials[o.material].absorption[s.band];
+  s.e[s.band] *= w;
+  leaveOccluder(s, sc.dir, n_in);
+  return true;
+}
+
+bool Tracer::portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
+  ++acc.occluder_events;
+  int live[core::kMaxBands], n = 0;
+  for (int b = 0; b < bands; ++b)
+    if (s.e[b] != 0.0) live[n++] = b;
+  if (n == 0) return false;
+  const bool first = s.has_qmc && s.diffractions == 0;
+  const double x = (first ? s.qmc[2] : rng.uniform()) * n;
+  const int pick = std::min(n - 1, static_cast<int>(x));
+  const double place = std::min(1.0, x - pick);
+  double lambda[core::kMaxBands];
+  for (int i = 0; i < n; ++i) {
+    const int b = live[i];
+    lambda[i] = opt.speed_of_sound_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
+  }
+  Path one = s;
+  one.band = live[pick];
+  one.lambda_m = lambda[pick];
+  one.e[one.band] = s.e[one.band] * n;
+  s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor);
+  s.floor_plane = floor_plane[k];
+  double xi[4];
+  for (double& v : xi) v = rng.uniform();
+  if (first) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
+  double w[core::kMaxBands];
+  const RoomOccluders::PortalScatter sc = opt.occluders->scatterPortal(k, s.pos, s.dir, lambda, n, pick, xi, w);
+  if (!sc.alive) {
+    if (sc.evanescent) ++acc.evanescent;
+    return false;
+  }
+  core::BandArray e = core::bandFill(0.0);
+  for (int i = 0; i < n; ++i) e[live[i]] = s.e[live[i]] * w[i];
+  s.e = e;
+  leaveOccluder(s, sc.dir, n_in);
+  return true;
+}
+
+}  // namespace diffray::transport::detail
