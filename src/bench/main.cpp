@@ -4,6 +4,8 @@
 //                same number of intersection queries per path and the same thread count (the target's
 //                anchor), and vs the same queries in Embree's coherent packets of the width diffray uses.
 //   room:        the acoustic tracer vs a plain rtcIntersect1 loop on each shipped room (room_bench.cpp).
+//   room-wbsdf:  rays and seconds `none` and `wbsdf` each need on a reverberant room (two-rooms) before
+//                every band metric stays within one JND of a 4M-ray run (room_wbsdf_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
@@ -23,6 +25,7 @@
 #include "realtime_bench.h"
 #include "render_is_bench.h"
 #include "room_bench.h"
+#include "room_wbsdf_bench.h"
 
 #include "diffray/core/parallel.h"
 #include "diffray/room/scene_file.h"
@@ -268,6 +271,11 @@ int main(int argc, char** argv) {
         const std::string path = std::string(DIFFRAY_BENCH_ROOMS) + "/" + name + ".json";
         bench::benchRoom(room::loadRoom(path), name, rays);
       }
+    }
+    if (which == "all" || which == "room-wbsdf") {
+      // `diffray_bench room-wbsdf [NAME]`: a shipped room (default two-rooms).
+      const std::string name = argc > 2 && which == "room-wbsdf" ? argv[2] : "two-rooms";
+      bench::benchRoomWbsdf(std::string(DIFFRAY_BENCH_ROOMS) + "/" + name + ".json", name, 4'000'000);
     }
     if (which == "all" || which == "convergence") {
       benchConvergence("slit-fraunhofer", false);
