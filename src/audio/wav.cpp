@@ -143,7 +143,7 @@ void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
   std::memset(&info, 0, sizeof(info));
   info.samplerate = static_cast<int>(fs);
   info.channels = audio.channels;
-  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  info.format = SF_FORMAT_WAVEX | SF_FORMAT_FLOAT;  // WAVE_FORMAT_EXTENSIBLE: required above 2 channels or 16 bits
   if (!sf_format_check(&info)) throw core::InputError(path, "libsndfile refuses this WAV layout");
   {
     SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
@@ -204,7 +204,7 @@ WavWriter::WavWriter(const std::string& path, int sample_rate_hz, int channels)
   std::memset(&info, 0, sizeof(info));
   info.samplerate = sample_rate_hz;
   info.channels = channels;
-  info.format = SF_FORMAT_WAV | SF_FORMAT_FLOAT;
+  info.format = SF_FORMAT_WAVEX | SF_FORMAT_FLOAT;  // WAVE_FORMAT_EXTENSIBLE: required above 2 channels or 16 bits
   if (channels < 1 || channels > 1024 || sample_rate_hz < 1 || !sf_format_check(&info))
     throw core::InputError(path, "libsndfile refuses a float WAV of " + std::to_string(channels) + " channels at " +
                                      std::to_string(sample_rate_hz) + " Hz");
