@@ -23,9 +23,26 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Band and fine-grid rows of one point model for listener l.
+void listenerRows(const room::Room& room, const PointModel& m, const CompareOptions& o, int l,
+                  const std::vector<double>& fine, const std::function<void(std::uint64_t)>& tick,
+                  std::uint64_t steps, std::vector<LevelRow>& out) {
+  const Vec3 src = room.sources[0].position_m;
+  const int nb = room.bands.size();
+  const room::Listener& li = room.listeners[l];
+  for (int b = 0; b < nb; ++b) {
+    const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
+                                        room.bands.upperHz(b), o.band_points);
+    out.push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
+    if (tick) tick(steps);
+  }
+  const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
+  for (std::size_t j = 0; j < fine.size(); ++j) out.push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
+  if (tick) tick(steps);
+}
+
 // Band and fine-grid rows of one point model for every listener (listeners in parallel).
 void pointRows(const room::Room& room, const PointModel& m, const CompareOptions& o, std::vector<LevelRow>& rows) {
-  const Vec3 src = room.sources[0].position_m;
   const int nl = static_cast<int>(room.listeners.size()), nb = room.bands.size();
   const double f_lo = room.bands.lowerHz(0), f_hi = room.bands.upperHz(nb - 1);
   const int n_fine = std::max(2, static_cast<int>(std::ceil(o.fine_per_octave * std::log2(f_hi / f_lo))) + 1);
@@ -35,16 +52,11 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
   const auto tick = o.model_progress ? o.model_progress(m.name()) : std::function<void(std::uint64_t)>();
   const auto steps = static_cast<std::uint64_t>(nl) * static_cast<std::uint64_t>(nb + 1);
   tbb::parallel_for(0, nl, [&](int l) {
-    const room::Listener& li = room.listeners[l];
-    for (int b = 0; b < nb; ++b) {
-      const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
-                                          room.bands.upperHz(b), o.band_points);
-      per[l].push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
-      if (tick) tick(steps);
+    try {
+      listenerRows(room, m, o, l, fine, tick, steps, per[l]);
+    } catch (const core::InputError& e) {  // every error names the listener and the model it is about
+      throw core::InputError("listener " + room.listeners[l].name + ": model " + m.name(), e.what());
     }
-    const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
-    for (std::size_t j = 0; j < fine.size(); ++j) per[l].push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
-    if (tick) tick(steps);
   });
   for (auto& v : per) rows.insert(rows.end(), v.begin(), v.end());
 }
