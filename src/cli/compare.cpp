@@ -36,19 +36,20 @@ namespace {
 struct CompareCliOptions {
   std::string scene;
   std::string mode = "auto";
-  std::string models;  // empty: the mode's every model
+  std::string models;  // not given: the mode's every model
+  bool models_given = false;
   std::string csv, plot;
   std::uint64_t rays = 0;  // 0: 1e6 in free-field mode, the room file's output.rays in room mode
   int fine = 24;
   bool aim = false;
 };
 
-// The models of `s` (comma-separated), each one of `allowed`; all of them when `s` is empty.
-std::vector<std::string> splitModels(const std::string& s, const std::vector<std::string>& allowed,
+// The models of `s` (comma-separated), each one of `allowed`; all of them when --models was not `given`.
+std::vector<std::string> splitModels(const std::string& s, bool given, const std::vector<std::string>& allowed,
                                      const std::string& mode) {
   std::string list;
   for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  if (s.empty()) return allowed;
+  if (!given) return allowed;
   std::vector<std::string> out;
   std::stringstream in(s);
   for (std::string m; std::getline(in, m, ',');) {
@@ -167,7 +168,7 @@ void writeCompareCsv(const std::string& path, const room::Room& room, const comp
 int runRoomMode(const CompareCliOptions& o, CommonOptions& common, bool seed_given, const room::Room& room,
                 const std::vector<std::string>& warnings) {
   if (o.aim) throw core::InputError("--aim", "applies to free-field scenes only, not in room mode");
-  std::vector<std::string> models = splitModels(o.models, {"none", "utd", "wbsdf", "exact"}, "room");
+  std::vector<std::string> models = splitModels(o.models, o.models_given, {"none", "utd", "wbsdf", "exact"}, "room");
   compare::RoomCompareOptions ro;
   ro.free_field = std::find(models.begin(), models.end(), "exact") != models.end();
   models.erase(std::remove(models.begin(), models.end(), "exact"), models.end());
@@ -220,7 +221,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
                   "room; free-field")
       ->check(CLI::IsMember({"auto", "room", "free-field"}))
       ->capture_default_str();
-  sub->add_option("--models", o->models,
+  CLI::Option* models_option = sub->add_option("--models", o->models,
                   "comma-separated; free-field mode: wbsdf, utd, exact (default all); room mode: none, utd, wbsdf, "
                   "exact (default all; exact = the free-field aperture reference where it applies)");
   addRaysOption(sub, o->rays, "rays (free-field: WBSDF rays, default 1e6; room: per model and source, default the "
@@ -242,8 +243,9 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
                 "free-field mode: aim every WBSDF ray at the scene's single occluder (valid only when every path to "
                 "the listeners crosses it: an edge or a door in free field)");
   sub->add_flag("--json", common.json, "print one JSON object per listener, model and band or frequency (JSON lines)");
-  return [o, &common, seed_option]() {
+  return [o, &common, seed_option, models_option]() {
     core::ThreadLimit limit(common.threads);
+    o->models_given = models_option->count() > 0;
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(o->scene, &warnings);
     checkOutputFiles({o->csv, o->plot}, room.input_files);
@@ -258,7 +260,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       if (w.find("is not closed") == std::string::npos && w.find("is outside the room") == std::string::npos)
         std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
     compare::CompareOptions co;
-    co.models = splitModels(o->models, {"wbsdf", "utd", "exact"}, "free-field");
+    co.models = splitModels(o->models, o->models_given, {"wbsdf", "utd", "exact"}, "free-field");
     co.rays = o->rays ? o->rays : 1'000'000;
     co.seed = common.seed;
     co.fine_per_octave = o->fine;

@@ -108,6 +108,18 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
   for (const room::Listener& l : room.listeners)
     out.shadow_angle_deg.push_back(shadowAngleDeg(room, room.sources[0].position_m, l.position_m));
   const auto has = [&](const char* m) { return std::find(o.models.begin(), o.models.end(), m) != o.models.end(); };
+  if (has("exact") && room.occluders.size() == 1 && room.occluders[0].x.kind == Kind::Opening) {
+    // The aperture reference holds only beyond the opening's plane: refuse, naming the listener, before any
+    // model runs (rather than after the WBSDF trace, from inside the reference).
+    const room::Occluder& d = room.occluders[0];
+    const double zs = (room.sources[0].position_m - d.origin_m).dot(d.normal);
+    for (const room::Listener& l : room.listeners)
+      if (zs * (l.position_m - d.origin_m).dot(d.normal) >= 0.0)
+        throw core::InputError("listener " + l.name + ": model exact",
+                               "on the source's side of " + d.type + " " + d.name +
+                                   ": the free-field aperture reference needs the listener beyond the opening's "
+                                   "plane (a room with a door: --mode room)");
+  }
 
   if (has("wbsdf")) {
     const auto t0 = std::chrono::steady_clock::now();
