@@ -202,7 +202,7 @@ void writeRoomComparePlot(const std::string& png_path, const room::Room& room, c
     std::ostringstream s;
     s << "set terminal pngcairo size " << 520 * cols << "," << 380 * rows << " font 'sans,9'\n"
       << "set output " << gnuplotQuoted(tmp_png) << "\nset multiplot layout " << rows << "," << cols << "\n"
-      << "set grid\nset key bottom left font 'sans,8'\nset logscale x\nset xrange [" << 0.7 * room.bands.nominalHz(0)
+      << "set grid\nset key top right font 'sans,7' samplen 2\nset logscale x\nset xrange [" << 0.7 * room.bands.nominalHz(0)
       << ":" << 1.4 * room.bands.nominalHz(room.bands.size() - 1) << "]\nset xlabel 'octave band (Hz)'\n"
       << "set ylabel 'dB re free field at 10 m'\n";
     for (int l = 0; l < nl; ++l) {
