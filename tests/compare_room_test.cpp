@@ -162,6 +162,20 @@ TEST(CompareRoom, FreeFieldReferenceOnlyBeyondTheDoorPlane) {
   EXPECT_TRUE(contains(rule(2).why_not, "exactly one"));
 }
 
+TEST(CompareRoom, FreeFieldModeGivesNoShadowAngleOnTheSourcesSide) {
+  // The door's plane is x = 6.1 with the source at x = 2: listener A (x = 4.5) has no shadow boundary.
+  dc::CompareOptions fo;
+  fo.models = {"utd"};
+  fo.band_points = 1;
+  fo.fine_per_octave = 1;
+  const dc::SceneComparison c = dc::compareScene(quickTwoRooms(), fo);
+  ASSERT_EQ(c.shadow_angle_deg.size(), 3u);
+  EXPECT_FALSE(c.shadow_angle_deg[0].has_value());
+  EXPECT_TRUE(c.shadow_angle_deg[1].has_value() && c.shadow_angle_deg[2].has_value());
+  ASSERT_EQ(c.warnings.size(), 1u);  // the closed-room note, not "B-hidden is outside the room"
+  EXPECT_TRUE(contains(c.warnings[0], "closed room")) << c.warnings[0];
+}
+
 // ---- errors name the listener and the model ----------------------------------------------------------------
 
 template <class F>

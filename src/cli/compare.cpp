@@ -96,7 +96,10 @@ void printTable(const room::Room& room, const compare::SceneComparison& c, bool 
     const room::Listener& li = room.listeners[l];
     const int il = static_cast<int>(l);
     std::printf("\nlistener %s at (%.2f, %.2f, %.2f) m", li.name.c_str(), li.position_m.x(), li.position_m.y(), li.position_m.z());
-    if (c.shadow_angle_deg[l]) std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
+    if (c.shadow_angle_deg[l])
+      std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
+    else if (room.occluders.size() == 1 && room.occluders[0].x.kind != room::OccluderAxis::Kind::Edge)
+      std::printf(", on the source's side of %s: no shadow boundary", room.occluders[0].name.c_str());
     std::printf("\n%8s", "band Hz");
     if (p.wbsdf) std::printf(" %16s", "wbsdf dB");
     if (p.utd) std::printf(" %9s", "utd dB");

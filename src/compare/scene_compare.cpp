@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "diffray/compare/point_models.h"
+#include "diffray/compare/room_compare.h"
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/wbsdf_levels.h"
 #include "diffray/core/error.h"
@@ -61,6 +62,14 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
   for (auto& v : per) rows.insert(rows.end(), v.begin(), v.end());
 }
 
+// Whether the listener at `p` is on the far side of the room's single opening (door or slit) from source 0,
+// where a shadow boundary of the opening exists; true for every other scene (an edge's angle runs all round it).
+bool beyondOccluder(const room::Room& room, const Vec3& p) {
+  if (room.occluders.size() != 1 || room.occluders[0].x.kind == Kind::Edge) return true;
+  const room::Occluder& d = room.occluders[0];
+  return (room.sources[0].position_m - d.origin_m).dot(d.normal) * (p - d.origin_m).dot(d.normal) < 0.0;
+}
+
 }  // namespace
 
 std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source, const Vec3& listener) {
@@ -103,18 +112,23 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
   checkListeners(room);
   const double c = room::speedOfSound(room.air);
   SceneComparison out;
-  out.warnings = hiddenListenerWarnings(room);
+  if (isEnclosedRoom(room))  // a wall between rooms is no ground plane: the hidden-listener test does not apply
+    out.warnings.push_back("the scene is a closed room: free-field mode leaves out its reverberation (room mode, "
+                           "the default for it, compares whole room simulations)");
+  else
+    out.warnings = hiddenListenerWarnings(room);
   if (room.sources.size() > 1) out.warnings.push_back("the scene has several sources: compare uses the first only");
   for (const room::Listener& l : room.listeners)
-    out.shadow_angle_deg.push_back(shadowAngleDeg(room, room.sources[0].position_m, l.position_m));
+    out.shadow_angle_deg.push_back(beyondOccluder(room, l.position_m)
+                                       ? shadowAngleDeg(room, room.sources[0].position_m, l.position_m)
+                                       : std::nullopt);
   const auto has = [&](const char* m) { return std::find(o.models.begin(), o.models.end(), m) != o.models.end(); };
   if (has("exact") && room.occluders.size() == 1 && room.occluders[0].x.kind == Kind::Opening) {
     // The aperture reference holds only beyond the opening's plane: refuse, naming the listener, before any
     // model runs (rather than after the WBSDF trace, from inside the reference).
     const room::Occluder& d = room.occluders[0];
-    const double zs = (room.sources[0].position_m - d.origin_m).dot(d.normal);
     for (const room::Listener& l : room.listeners)
-      if (zs * (l.position_m - d.origin_m).dot(d.normal) >= 0.0)
+      if (!beyondOccluder(room, l.position_m))
         throw core::InputError("listener " + l.name + ": model exact",
                                "on the source's side of " + d.type + " " + d.name +
                                    ": the free-field aperture reference needs the listener beyond the opening's "
