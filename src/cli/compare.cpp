@@ -1,9 +1,12 @@
-// `diffray compare SCENE.json`: the level at each listener relative to free field from the WBSDF ray tracer,
-// UTD and the exact reference that fits the scene (compare/scene_compare.h), as a table of levels and dB
-// errors against the exact reference per band, JSON lines (one object per listener, model and frequency),
-// a CSV file and a PNG of level against frequency and against the listener's angle past the shadow
-// boundary. Any scene file works (rooms/README.md, "occluders"); the exact reference exists for one edge or
-// barrier (Macdonald's half-plane) or one door or slit (Rayleigh–Sommerfeld).
+// `diffray compare SCENE.json`, in one of two modes.
+// Free-field mode: the level at each listener relative to free field from the WBSDF ray tracer, UTD and the
+// exact reference that fits the scene (compare/scene_compare.h), as a table of levels and dB errors against
+// the exact reference per band, JSON lines (one object per listener, model and frequency), a CSV file and a
+// PNG of level against frequency and against the listener's angle past the shadow boundary. The exact
+// reference exists for one edge or barrier (Macdonald's half-plane) or one door or slit (Rayleigh–Sommerfeld).
+// Room mode (a closed room holding its source, or --mode room): whole room simulations with diffraction
+// none, utd and wbsdf, compared per listener and band by G, early energy, EDT, T30, C50, C80
+// (compare/room_compare.h; outputs in cli/compare_room.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,7 +18,9 @@
 #include <sstream>
 
 #include "diffray/cli/commands.h"
+#include "diffray/cli/compare_room.h"
 #include "diffray/cli/plot.h"
+#include "diffray/compare/room_compare.h"
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/atomic_file.h"
@@ -30,22 +35,29 @@ namespace {
 
 struct CompareCliOptions {
   std::string scene;
-  std::string models = "wbsdf,utd,exact";
+  std::string mode = "auto";
+  std::string models;  // not given: the mode's every model
+  bool models_given = false;
   std::string csv, plot;
-  std::uint64_t rays = 1'000'000;
+  std::uint64_t rays = 0;  // 0: 1e6 in free-field mode, the room file's output.rays in room mode
   int fine = 24;
   bool aim = false;
 };
 
-std::vector<std::string> splitModels(const std::string& s) {
+// The models of `s` (comma-separated), each one of `allowed`; all of them when --models was not `given`.
+std::vector<std::string> splitModels(const std::string& s, bool given, const std::vector<std::string>& allowed,
+                                     const std::string& mode) {
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  if (!given) return allowed;
   std::vector<std::string> out;
   std::stringstream in(s);
   for (std::string m; std::getline(in, m, ',');) {
-    if (m != "wbsdf" && m != "utd" && m != "exact")
-      throw core::InputError("--models", "unknown model \"" + m + "\" (a comma-separated list of wbsdf, utd, exact)");
-    out.push_back(m);
+    if (std::find(allowed.begin(), allowed.end(), m) == allowed.end())
+      throw core::InputError("--models", "unknown model \"" + m + "\" in " + mode + " mode (a comma-separated list of " + list + ")");
+    if (std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
-  if (out.empty()) throw core::InputError("--models", "give at least one of wbsdf, utd, exact");
+  if (out.empty()) throw core::InputError("--models", "give at least one of " + list);
   return out;
 }
 
@@ -84,7 +96,10 @@ void printTable(const room::Room& room, const compare::SceneComparison& c, bool 
     const room::Listener& li = room.listeners[l];
     const int il = static_cast<int>(l);
     std::printf("\nlistener %s at (%.2f, %.2f, %.2f) m", li.name.c_str(), li.position_m.x(), li.position_m.y(), li.position_m.z());
-    if (c.shadow_angle_deg[l]) std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
+    if (c.shadow_angle_deg[l])
+      std::printf(", %+.1f deg past the shadow boundary", *c.shadow_angle_deg[l]);
+    else if (room.occluders.size() == 1 && room.occluders[0].x.kind != room::OccluderAxis::Kind::Edge)
+      std::printf(", on the source's side of %s: no shadow boundary", room.occluders[0].name.c_str());
     std::printf("\n%8s", "band Hz");
     if (p.wbsdf) std::printf(" %16s", "wbsdf dB");
     if (p.utd) std::printf(" %9s", "utd dB");
@@ -152,39 +167,95 @@ void writeCompareCsv(const std::string& path, const room::Room& room, const comp
   });
 }
 
+// Room mode (compare/room_compare.h): every ray model a whole room simulation; returns the exit code.
+int runRoomMode(const CompareCliOptions& o, CommonOptions& common, bool seed_given, const room::Room& room,
+                const std::vector<std::string>& warnings) {
+  if (o.aim) throw core::InputError("--aim", "applies to free-field scenes only, not in room mode");
+  std::vector<std::string> models = splitModels(o.models, o.models_given, {"none", "utd", "wbsdf", "exact"}, "room");
+  compare::RoomCompareOptions ro;
+  ro.free_field = std::find(models.begin(), models.end(), "exact") != models.end();
+  models.erase(std::remove(models.begin(), models.end(), "exact"), models.end());
+  ro.models = models;
+  ro.rays = o.rays;
+  ro.seed = seed_given ? common.seed : room.output.seed;
+  for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
+  const std::uint64_t rays = (o.rays ? o.rays : room.output.rays) * room.sources.size() * models.size();
+  core::Progress progress("compare " + room.name, rays);
+  ro.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+  const compare::RoomComparison c = compare::compareRoom(room, ro);
+  progress.finish();
+  for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
+  OutputFiles written;  // replaced together: a later failure leaves the previous files
+  if (!o.plot.empty()) written.write(o.plot, [&](const std::string& f) { writeRoomComparePlot(f, room, c); });
+  if (!o.csv.empty()) written.write(o.csv, [&](const std::string& f) { writeRoomCompareCsv(f, room, c); });
+  written.commit();
+  if (common.json) {
+    std::cout << roomComparisonJsonLines(room, c);
+    std::cout.flush();
+  } else {
+    printRoomComparison(room, c);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
   auto o = std::make_shared<CompareCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "compare", "Level at each listener relative to free field from the WBSDF ray tracer, UTD edge diffraction and "
-                 "the exact reference (Macdonald's half-plane for one edge/barrier, Rayleigh-Sommerfeld for one "
-                 "door/slit), per band and on a fine frequency grid, with dB errors against the exact reference.");
+      "compare",
+      "Compare diffraction models at each listener. Free-field mode (one edge, barrier, door or slit in the "
+      "open): level re free field from the WBSDF ray tracer, UTD edge diffraction and the exact reference "
+      "(Macdonald's half-plane for one edge/barrier, Rayleigh-Sommerfeld for one door/slit), per band and on a "
+      "fine frequency grid, with dB errors against the exact reference. Room mode (chosen when the scene's mesh "
+      "is closed and holds its first source, or by --mode room): whole room simulations (as `diffray ir`) with "
+      "diffraction none, utd and wbsdf, same rays and seed, per listener and octave band: G (strength, dB re "
+      "the free-field energy of the same source at 10 m, ISO 3382-1), early (the energy in the 20 ms from the "
+      "direct-sound time, same reference), EDT, T30, C50, C80. The free-field aperture reference (exact) is "
+      "shown only for listeners beyond the door's plane from the source (the direct sound through the door, "
+      "read beside the early energy); for the others the table says why. A wave-model slot "
+      "(compare/room_compare.h) adds a \"wave\" model and each ray model's difference from it (dB; % for "
+      "EDT and T30).");
   sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")
       ->check(inputPathValidator())
       ->required();
-  sub->add_option("--models", o->models, "comma-separated: wbsdf, utd, exact")->capture_default_str();
-  addRaysOption(sub, o->rays, "WBSDF rays (default 1e6)");
-  sub->add_option("--seed", common.seed, "random seed of the WBSDF run")->transform(seedValidator())->capture_default_str();
+  sub->add_option("--mode", o->mode,
+                  "auto: room mode when the scene's mesh is closed and holds its first source, else free-field; "
+                  "room; free-field")
+      ->check(CLI::IsMember({"auto", "room", "free-field"}))
+      ->capture_default_str();
+  CLI::Option* models_option = sub->add_option("--models", o->models,
+                  "comma-separated; free-field mode: wbsdf, utd, exact (default all); room mode: none, utd, wbsdf, "
+                  "exact (default all; exact = the free-field aperture reference where it applies)");
+  addRaysOption(sub, o->rays, "rays (free-field: WBSDF rays, default 1e6; room: per model and source, default the "
+                              "room file's output.rays)");
+  CLI::Option* seed_option =
+      sub->add_option("--seed", common.seed, "random seed (room mode: default the room file's output.seed)")
+          ->transform(seedValidator());
   addThreadsOption(sub, common.threads);
-  sub->add_option("--csv", o->csv, "write every level (listener, model, frequency) to this CSV file")
+  sub->add_option("--csv", o->csv, "write every figure (listener, model, band or frequency) to this CSV file")
       ->check(outputPathValidator());
-  sub->add_option("--plot", o->plot, "draw level against frequency and against angle past the shadow boundary (PNG, gnuplot)")
+  sub->add_option("--plot", o->plot,
+                  "PNG (gnuplot); free-field: level against frequency and against angle past the shadow boundary; "
+                  "room: G and early energy per band, per model, one panel per listener")
       ->check(outputPathValidator());
-  sub->add_option("--fine-per-octave", o->fine, "fine-grid frequencies per octave for UTD and exact")
+  sub->add_option("--fine-per-octave", o->fine, "free-field mode: fine-grid frequencies per octave for UTD and exact")
       ->transform(wholeNumberValidator(1, 400))
       ->capture_default_str();
   sub->add_flag("--aim", o->aim,
-                "aim every WBSDF ray at the scene's single occluder (valid only when every path to the listeners "
-                "crosses it: an edge or a door in free field)");
-  sub->add_flag("--json", common.json, "print one JSON object per listener, model and frequency (JSON lines)");
-  return [o, &common]() {
+                "free-field mode: aim every WBSDF ray at the scene's single occluder (valid only when every path to "
+                "the listeners crosses it: an edge or a door in free field)");
+  sub->add_flag("--json", common.json, "print one JSON object per listener, model and band or frequency (JSON lines)");
+  return [o, &common, seed_option, models_option]() {
     core::ThreadLimit limit(common.threads);
+    o->models_given = models_option->count() > 0;
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(o->scene, &warnings);
     checkOutputFiles({o->csv, o->plot}, room.input_files);
-    compare::checkListeners(room);  // before the loader's warnings: a refused listener gives one line
     checkPlotOption("--plot", o->plot);
+    if (o->mode == "room" || (o->mode == "auto" && compare::isEnclosedRoom(room)))
+      return runRoomMode(*o, common, seed_option->count() > 0, room, warnings);
+    compare::checkListeners(room);  // before the loader's warnings: a refused listener gives one line
     // Comparison scenes are usually open (a barrier on the ground, a wall in free field): the room checks'
     // warnings about an open mesh and listeners "outside the room" do not apply to them. A listener hidden
     // behind a surface (below the ground) is warned about by compareScene instead (compare/scene_checks.h).
@@ -192,12 +263,12 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       if (w.find("is not closed") == std::string::npos && w.find("is outside the room") == std::string::npos)
         std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
     compare::CompareOptions co;
-    co.models = splitModels(o->models);
-    co.rays = o->rays;
+    co.models = splitModels(o->models, o->models_given, {"wbsdf", "utd", "exact"}, "free-field");
+    co.rays = o->rays ? o->rays : 1'000'000;
     co.seed = common.seed;
     co.fine_per_octave = o->fine;
     co.aim = o->aim;
-    core::Progress progress("compare " + room.name, o->rays);
+    core::Progress progress("compare " + room.name, co.rays);
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
     co.model_progress = [&progress, &room](const std::string& model) {
       progress.finish();  // the rays are traced first: close their bar before a model's

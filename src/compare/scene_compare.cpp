@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "diffray/compare/point_models.h"
+#include "diffray/compare/room_compare.h"
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/wbsdf_levels.h"
 #include "diffray/core/error.h"
@@ -23,9 +24,26 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Band and fine-grid rows of one point model for listener l.
+void listenerRows(const room::Room& room, const PointModel& m, const CompareOptions& o, int l,
+                  const std::vector<double>& fine, const std::function<void(std::uint64_t)>& tick,
+                  std::uint64_t steps, std::vector<LevelRow>& out) {
+  const Vec3 src = room.sources[0].position_m;
+  const int nb = room.bands.size();
+  const room::Listener& li = room.listeners[l];
+  for (int b = 0; b < nb; ++b) {
+    const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
+                                        room.bands.upperHz(b), o.band_points);
+    out.push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
+    if (tick) tick(steps);
+  }
+  const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
+  for (std::size_t j = 0; j < fine.size(); ++j) out.push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
+  if (tick) tick(steps);
+}
+
 // Band and fine-grid rows of one point model for every listener (listeners in parallel).
 void pointRows(const room::Room& room, const PointModel& m, const CompareOptions& o, std::vector<LevelRow>& rows) {
-  const Vec3 src = room.sources[0].position_m;
   const int nl = static_cast<int>(room.listeners.size()), nb = room.bands.size();
   const double f_lo = room.bands.lowerHz(0), f_hi = room.bands.upperHz(nb - 1);
   const int n_fine = std::max(2, static_cast<int>(std::ceil(o.fine_per_octave * std::log2(f_hi / f_lo))) + 1);
@@ -35,18 +53,21 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
   const auto tick = o.model_progress ? o.model_progress(m.name()) : std::function<void(std::uint64_t)>();
   const auto steps = static_cast<std::uint64_t>(nl) * static_cast<std::uint64_t>(nb + 1);
   tbb::parallel_for(0, nl, [&](int l) {
-    const room::Listener& li = room.listeners[l];
-    for (int b = 0; b < nb; ++b) {
-      const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
-                                          room.bands.upperHz(b), o.band_points);
-      per[l].push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
-      if (tick) tick(steps);
+    try {
+      listenerRows(room, m, o, l, fine, tick, steps, per[l]);
+    } catch (const core::InputError& e) {  // every error names the listener and the model it is about
+      throw core::InputError("listener " + room.listeners[l].name + ": model " + m.name(), e.what());
     }
-    const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
-    for (std::size_t j = 0; j < fine.size(); ++j) per[l].push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
-    if (tick) tick(steps);
   });
   for (auto& v : per) rows.insert(rows.end(), v.begin(), v.end());
+}
+
+// Whether the listener at `p` is on the far side of the room's single opening (door or slit) from source 0,
+// where a shadow boundary of the opening exists; true for every other scene (an edge's angle runs all round it).
+bool beyondOccluder(const room::Room& room, const Vec3& p) {
+  if (room.occluders.size() != 1 || room.occluders[0].x.kind == Kind::Edge) return true;
+  const room::Occluder& d = room.occluders[0];
+  return (room.sources[0].position_m - d.origin_m).dot(d.normal) * (p - d.origin_m).dot(d.normal) < 0.0;
 }
 
 }  // namespace
@@ -91,11 +112,28 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
   checkListeners(room);
   const double c = room::speedOfSound(room.air);
   SceneComparison out;
-  out.warnings = hiddenListenerWarnings(room);
+  if (isEnclosedRoom(room))  // a wall between rooms is no ground plane: the hidden-listener test does not apply
+    out.warnings.push_back("the scene is a closed room: free-field mode leaves out its reverberation (room mode, "
+                           "the default for it, compares whole room simulations)");
+  else
+    out.warnings = hiddenListenerWarnings(room);
   if (room.sources.size() > 1) out.warnings.push_back("the scene has several sources: compare uses the first only");
   for (const room::Listener& l : room.listeners)
-    out.shadow_angle_deg.push_back(shadowAngleDeg(room, room.sources[0].position_m, l.position_m));
+    out.shadow_angle_deg.push_back(beyondOccluder(room, l.position_m)
+                                       ? shadowAngleDeg(room, room.sources[0].position_m, l.position_m)
+                                       : std::nullopt);
   const auto has = [&](const char* m) { return std::find(o.models.begin(), o.models.end(), m) != o.models.end(); };
+  if (has("exact") && room.occluders.size() == 1 && room.occluders[0].x.kind == Kind::Opening) {
+    // The aperture reference holds only beyond the opening's plane: refuse, naming the listener, before any
+    // model runs (rather than after the WBSDF trace, from inside the reference).
+    const room::Occluder& d = room.occluders[0];
+    for (const room::Listener& l : room.listeners)
+      if (!beyondOccluder(room, l.position_m))
+        throw core::InputError("listener " + l.name + ": model exact",
+                               "on the source's side of " + d.type + " " + d.name +
+                                   ": the free-field aperture reference needs the listener beyond the opening's "
+                                   "plane (a room with a door: --mode room)");
+  }
 
   if (has("wbsdf")) {
     const auto t0 = std::chrono::steady_clock::now();
