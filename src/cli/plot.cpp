@@ -156,7 +156,6 @@ void writeDecayPlot(const std::string& png_path, const std::vector<std::string>&
     std::ostringstream script;
     script << "set terminal pngcairo size " << 640 * cols << "," << 420 * rows << " font 'sans,9'\n"
            << "set output " << quoted(tmp_png) << "\n"
-           << "set multiplot layout " << rows << "," << cols << "\n"
            << "set key top right font 'sans,8'\nset grid\nset yrange [-70:2]\n"
            << "set xlabel 'time after emission (s)'\nset ylabel 'energy decay (Schroeder), dB'\n";
     bool marked = false;
@@ -172,15 +171,15 @@ void writeDecayPlot(const std::string& png_path, const std::vector<std::string>&
         const std::vector<double> e = r.total(b);
         std::vector<double> tail(e.size() + 1, 0.0);
         for (std::size_t k = e.size(); k-- > 0;) tail[k] = tail[k + 1] + e[k];
-        // A true decay curve never rises; a signed (WBSDF) histogram's can: by more than 0.1 dB, it is
-        // drawn dashed and labelled.
+        // A true decay curve never rises; a signed (WBSDF) histogram's can: by more than 1 dB (visible
+        // on the plot's scale), it is drawn dashed and labelled.
         double lowest = HUGE_VAL;
         bool up = false;
         std::size_t points = 0;
         for (std::size_t k = 0; k < e.size(); ++k) {
           if (!(tail[k] > 0.0 && tail[0] > 0.0)) break;
           const double level = 10.0 * std::log10(tail[k] / tail[0]);
-          up = up || level > lowest + 0.1;
+          up = up || level > lowest + 1.0;
           lowest = std::min(lowest, level);
           out << static_cast<double>(k) * r.bin_s << ' ' << level << '\n';
           ++points;
@@ -201,10 +200,13 @@ void writeDecayPlot(const std::string& png_path, const std::vector<std::string>&
                << (rises[b] ? "dt 2 " : "") << "lc " << (b + 1) << " title " << quoted(titles[b]);
       panels << "\n";
     }
-    if (marked)  // screen coordinates: under every panel of the figure
-      script << "set label 1 'dashed: the decay curve rises (negative energy); NOISY: a metric's standard error exceeds "
-                "its JND; trace more rays' at screen 0.01,0.01 font 'sans,8'\n";
-    script << panels.str() << "unset multiplot\n";
+    script << "set multiplot layout " << rows << "," << cols;
+    if (marked)  // the legend of the marks, as the figure's title
+      script << " title "
+             << quoted("dashed: the decay curve rises by more than 1 dB (negative energy); NOISY: a metric's standard "
+                       "error exceeds its JND; NEGATIVE ENERGY: no metric; trace more rays")
+             << " font 'sans,9'";
+    script << "\n" << panels.str() << "unset multiplot\n";
     return script.str();
   });
 }
