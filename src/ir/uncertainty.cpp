@@ -189,6 +189,7 @@ std::vector<BandUncertainty> markMetrics(std::vector<BandMetrics>& metrics, cons
       m.negative[i] = !std::isfinite(v) && (m.negative_energy || std::isfinite(m.schroeder_zero_s)) &&
                       !bm.shorter_than_filter;
       m.noisy[i] = std::isfinite(v) && (m.unmeasurable[i] > 0 || m.se[i] > figureJnd(f, v));
+      if (!std::isfinite(v)) m.se[i] = kNaN;  // no standard error for a figure not given
     }
   }
   return out;

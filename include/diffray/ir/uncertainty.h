@@ -59,7 +59,8 @@ struct BandUncertainty {
 /// used) there are no standard errors, and only the negative-energy marks.
 std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response);
 /// Marks of `metrics` from the standard errors of `u` (a copy of u with noisy[] and negative[] set for
-/// these figures); a negative-energy band's figures are set to NaN in `metrics` (never a plain number).
+/// these figures, and no standard error for a figure they do not give); a negative-energy band's figures
+/// are set to NaN in `metrics` (never a plain number).
 /// `histogram_marks`: for the metrics of a WAV synthesized from the histogram (which reads negative bins
 /// as silence), markMetrics of the histogram's own metrics: a figure the histogram cannot give because of
 /// negative energy is not given from the WAV either.
