@@ -379,8 +379,28 @@ TEST(RoomTracer, SameSeedGivesIdenticalHistogramsForAnyThreadCount) {
   for (int threads : {1, 2}) {
     diffray::core::ThreadLimit limit(threads);
     const auto res = dt::traceRoom(room, geometry, 0, opt);
+    const diffray::receiver::EnergyHistogram& h = res.listeners[0];
     for (int b = 0; b < room.bands.size(); ++b)
-      for (int k = 0; k < res.listeners[0].bins(); ++k) runs[threads - 1].push_back(res.listeners[0].value(b, k));
+      for (int k = 0; k < h.bins(); ++k) runs[threads - 1].push_back(h.value(b, k));
+    // The batches too (the metrics' standard errors): each holds its share of the rays, and they add up
+    // to the whole (to rounding: the whole sums the chunks in another order).
+    ASSERT_EQ(h.batches(), opt.batches);
+    double weights = 0.0;
+    for (int j = 0; j < h.batches(); ++j) {
+      EXPECT_NEAR(h.batchWeight(j), static_cast<double>(opt.rays) / opt.batches, static_cast<double>(opt.chunk_rays)) << j;
+      weights += h.batchWeight(j);
+    }
+    EXPECT_EQ(weights, static_cast<double>(opt.rays));
+    for (int b = 0; b < room.bands.size(); ++b)
+      for (int k = 0; k < h.bins(); ++k) {
+        double sum = 0.0, scale = 0.0;
+        for (int j = 0; j < h.batches(); ++j) {
+          sum += h.batchValue(j, b, k);
+          scale += std::abs(h.batchValue(j, b, k));
+          runs[threads - 1].push_back(h.batchValue(j, b, k));
+        }
+        ASSERT_NEAR(sum, h.value(b, k), 1e-12 * scale) << b << " " << k;
+      }
   }
   ASSERT_EQ(runs[0].size(), runs[1].size());
   double total = 0;

@@ -66,6 +66,11 @@ void checkAnalysisMemory(const std::string& file, const std::string& kind) {
 
 }  // namespace
 
+// A file alone holds one realisation of the response: nothing to estimate a figure's scatter from.
+constexpr const char* kNoStandardErrors =
+    "no standard errors: a WAV alone has no ray batches to estimate them from (`diffray ir` gives them for a "
+    "traced room, in its table's flags and its sidecar's \"se\")";
+
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
   auto o = std::make_shared<MetricsOptions>();
   CLI::App* sub = app.add_subcommand(
@@ -99,12 +104,13 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
                        {"sample_rate_hz", audio.sample_rate_hz},
                        {"channels", audio.channels},
                        {"channel", o->channel},
-                       {"bands", ir::metricsJson(bands, metrics)}};
+                       {"bands", ir::metricsJson(bands, metrics)},
+                       {"standard_errors", kNoStandardErrors}};
       std::cout << jsonText(j) << std::endl;
     } else {
       std::cout << o->file << ": " << audio.frames() << " frames at " << audio.sample_rate_hz << " Hz, channel "
                 << o->channel << " of " << audio.channels << "\n"
-                << ir::metricsTable(bands, metrics);
+                << ir::metricsTable(bands, metrics) << kNoStandardErrors << "\n";
     }
     return 0;
   };

@@ -147,7 +147,8 @@ void writeValidationPlot(const std::string& png_path, const std::vector<validate
 }
 
 void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
-                    const std::vector<ir::EnergyResponse>& responses) {
+                    const std::vector<ir::EnergyResponse>& responses,
+                    const std::vector<std::vector<std::string>>& flags) {
   runGnuplot("--plot", png_path, [&](const std::string& tmp_png, const std::string& dir_name) {
     const fs::path dir(dir_name);
     const int cols = responses.size() > 1 ? 2 : 1;
@@ -155,31 +156,57 @@ void writeDecayPlot(const std::string& png_path, const std::vector<std::string>&
     std::ostringstream script;
     script << "set terminal pngcairo size " << 640 * cols << "," << 420 * rows << " font 'sans,9'\n"
            << "set output " << quoted(tmp_png) << "\n"
-           << "set multiplot layout " << rows << "," << cols << "\n"
            << "set key top right font 'sans,8'\nset grid\nset yrange [-70:2]\n"
            << "set xlabel 'time after emission (s)'\nset ylabel 'energy decay (Schroeder), dB'\n";
+    bool marked = false;
+    std::ostringstream panels;
     for (std::size_t l = 0; l < responses.size(); ++l) {
       const auto& r = responses[l];
       const fs::path data = dir / ("listener" + std::to_string(l) + ".dat");
       std::ofstream out(data);
+      std::vector<std::string> titles;
+      std::vector<bool> rises;
       for (int b = 0; b < r.bands.size(); ++b) {
         // Backward integral of the band's whole histogram, in dB of its total, at each bin's start.
         const std::vector<double> e = r.total(b);
         std::vector<double> tail(e.size() + 1, 0.0);
         for (std::size_t k = e.size(); k-- > 0;) tail[k] = tail[k + 1] + e[k];
+        // A true decay curve never rises; a signed (WBSDF) histogram's can: by more than 1 dB (visible
+        // on the plot's scale), it is drawn dashed and labelled.
+        double lowest = HUGE_VAL;
+        bool up = false;
+        std::size_t points = 0;
         for (std::size_t k = 0; k < e.size(); ++k) {
           if (!(tail[k] > 0.0 && tail[0] > 0.0)) break;
-          out << static_cast<double>(k) * r.bin_s << ' ' << 10.0 * std::log10(tail[k] / tail[0]) << '\n';
+          const double level = 10.0 * std::log10(tail[k] / tail[0]);
+          up = up || level > lowest + 1.0;
+          lowest = std::min(lowest, level);
+          out << static_cast<double>(k) * r.bin_s << ' ' << level << '\n';
+          ++points;
         }
         out << "\n\n";
+        const std::string flag = l < flags.size() && static_cast<std::size_t>(b) < flags[l].size() ? flags[l][b] : "ok";
+        std::string title = r.bands.label(b) + " Hz";
+        if (flag == "noisy") title += " NOISY (SE > JND)";
+        if (flag == "negative_energy") title += tail[0] > 0.0 ? " NEGATIVE ENERGY" : " NEGATIVE ENERGY (not drawn)";
+        if (up) title += ", rises: negative energy";
+        marked = marked || up || flag != "ok";
+        titles.push_back(title);
+        rises.push_back(up && points > 0);
       }
-      script << "set title " << quoted("listener " + names[l]) << "\nplot ";
+      panels << "set title " << quoted("listener " + names[l]) << "\nplot ";
       for (int b = 0; b < r.bands.size(); ++b)
-        script << (b ? ", " : "") << quoted(data.string()) << " index " << b << " using 1:2 with lines lw 2 title "
-               << quoted(r.bands.label(b) + " Hz");
-      script << "\n";
+        panels << (b ? ", " : "") << quoted(data.string()) << " index " << b << " using 1:2 with lines lw 2 "
+               << (rises[b] ? "dt 2 " : "") << "lc " << (b + 1) << " title " << quoted(titles[b]);
+      panels << "\n";
     }
-    script << "unset multiplot\n";
+    script << "set multiplot layout " << rows << "," << cols;
+    if (marked)  // the legend of the marks, as the figure's title
+      script << " title "
+             << quoted("dashed: the decay curve rises by more than 1 dB (negative energy); NOISY: a metric's standard "
+                       "error exceeds its JND; NEGATIVE ENERGY: no metric; trace more rays")
+             << " font 'sans,9'";
+    script << "\n" << panels.str() << "unset multiplot\n";
     return script.str();
   });
 }

@@ -7,6 +7,7 @@
 #include "diffray/core/error.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/ir/filter_limit.h"
+#include "diffray/ir/uncertainty.h"
 
 namespace diffray::ir {
 
@@ -369,14 +370,16 @@ nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<B
   return j;
 }
 
-std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics) {
+std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics,
+                         const std::vector<BandUncertainty>* uncertainty) {
   DIFFRAY_CHECK(static_cast<int>(metrics.size()) == bands.size());
+  DIFFRAY_CHECK(!uncertainty || uncertainty->size() == metrics.size());
   std::string out;
   char line[160];
-  std::snprintf(line, sizeof line, "%7s %7s %7s %7s %7s %7s %7s %7s %9s\n", "band Hz", "T20 s", "T30 s", "EDT s",
-                "C50 dB", "C80 dB", "D50", "Ts ms", "range dB");
+  std::snprintf(line, sizeof line, "%7s %7s %7s %7s %7s %7s %7s %7s %9s%s\n", "band Hz", "T20 s", "T30 s", "EDT s",
+                "C50 dB", "C80 dB", "D50", "Ts ms", "range dB", uncertainty ? "  flag" : "");
   out += line;
-  bool missing = false, short_band = false, limited_any = false;
+  bool missing = false, short_band = false, limited_any = false, noisy_any = false, negative_any = false;
   const auto cell = [&missing](double v, const char* format) {
     char text[32];
     if (!std::isfinite(v)) {
@@ -388,19 +391,32 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   };
   for (int b = 0; b < bands.size(); ++b) {
     const BandMetrics& m = metrics[b];
+    const BandUncertainty* u = uncertainty ? &(*uncertainty)[static_cast<std::size_t>(b)] : nullptr;
     short_band |= m.shorter_than_filter;
-    // A figure within its band filter's reach (BandMetrics::filter_limited) carries a '*'.
-    const auto figure = [&](Figure f, double scale, const char* format, const char* marked) {
+    // Marks after a figure: '*' within its band filter's reach (BandMetrics::filter_limited), '?' noisier
+    // than its JND; '!' alone where negative energy leaves no figure.
+    const auto figure = [&](Figure f, double scale, int decimals) {
       const double v = scale * m.value(f);
-      if (!m.limited(f) || !std::isfinite(v)) return cell(v, format);
-      limited_any = true;
-      return cell(v, marked);
+      if (!std::isfinite(v)) {
+        if (u && u->isNegative(f)) {
+          negative_any = true;
+          return std::string("      !");
+        }
+        return cell(v, "%7.3f");
+      }
+      std::string marks;
+      if (m.limited(f)) marks += '*', limited_any = true;
+      if (u && u->isNoisy(f)) marks += '?', noisy_any = true;
+      char format[16];
+      std::snprintf(format, sizeof format, "%%%d.%df%s", 7 - static_cast<int>(marks.size()), decimals, marks.c_str());
+      return cell(v, format);
     };
-    out += cell(bands.nominalHz(b), "%7g") + " " + figure(Figure::T20, 1.0, "%7.3f", "%6.3f*") + " " +
-           figure(Figure::T30, 1.0, "%7.3f", "%6.3f*") + " " + figure(Figure::Edt, 1.0, "%7.3f", "%6.3f*") + " " +
-           figure(Figure::C50, 1.0, "%7.2f", "%6.2f*") + " " + figure(Figure::C80, 1.0, "%7.2f", "%6.2f*") + " " +
-           figure(Figure::D50, 1.0, "%7.3f", "%6.3f*") + " " + figure(Figure::Ts, 1e3, "%7.1f", "%6.1f*") + "   " +
-           (m.shorter_than_filter ? std::string("  short") : cell(m.decay_range_db, "%7.1f")) + "\n";
+    static constexpr const char* kFlags[] = {"    ok", " noisy", "   neg"};
+    out += cell(bands.nominalHz(b), "%7g") + " " + figure(Figure::T20, 1.0, 3) + " " + figure(Figure::T30, 1.0, 3) +
+           " " + figure(Figure::Edt, 1.0, 3) + " " + figure(Figure::C50, 1.0, 2) + " " + figure(Figure::C80, 1.0, 2) +
+           " " + figure(Figure::D50, 1.0, 3) + " " + figure(Figure::Ts, 1e3, 1) + "   " +
+           (m.shorter_than_filter ? std::string("  short") : cell(m.decay_range_db, "%7.1f")) +
+           (u ? kFlags[static_cast<int>(u->flag())] : "") + "\n";
   }
   if (missing)
     out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
@@ -412,6 +428,15 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
   if (short_band)
     out += "short: the file ends sooner after the onset than the band's analysis filter rings (0.15-0.4 s for "
            "octave bands, up to 1.2 s for third octaves), so the band is not measured.\n";
+  if (noisy_any)
+    out += "?: noisy: its standard error (jackknife over the ray batches, in the JSON's \"se\") exceeds its JND "
+           "(5 % for T and EDT, 1 dB for C, 0.05 for D50, 10 ms for Ts), or it cannot be measured once a batch "
+           "of rays is left out; trace more rays.\n";
+  if (negative_any)
+    out += "!: not available: the band's energy (signed with WBSDF diffraction) sums negative, or its decay curve "
+           "falls to zero or below; trace more rays.\n";
+  if (uncertainty)
+    out += "flag: ok, noisy (a figure marked ?), or neg (negative energy: a figure marked !).\n";
   return out;
 }
 

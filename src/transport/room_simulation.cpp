@@ -77,6 +77,7 @@ double pilotT60(const room::Room& room, const RoomGeometry& geometry, const Room
   to.speed_of_sound_m_s = sim.speed_of_sound_m_s;
   to.air_m_per_m = sim.air_m_per_m;
   to.in_flight = true;
+  to.batches = 0;  // the pilot needs no standard errors
   const RoomTraceResult res = traceRoom(room, geometry, 0, to);
   double latest = std::numeric_limits<double>::quiet_NaN();
   for (int b = 0; b < room.bands.size(); ++b) {
@@ -315,6 +316,14 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     r.traced.assign(nb, std::vector<double>(sim.traced[l].bins(), 0.0));
     for (int b = 0; b < nb; ++b)
       for (int i = 0; i < sim.traced[l].bins(); ++i) r.traced[b][i] = sim.traced[l].value(b, i);
+    const receiver::EnergyHistogram& h = sim.traced[l];
+    for (int k = 0; k < h.batches(); ++k) {
+      if (!(h.batchWeight(k) > 0.0)) continue;
+      r.batch_weights.push_back(h.batchWeight(k));
+      r.batches.emplace_back(nb, std::vector<double>(static_cast<std::size_t>(h.bins()), 0.0));
+      for (int b = 0; b < nb; ++b)
+        for (int i = 0; i < h.bins(); ++i) r.batches.back()[b][i] = h.batchValue(k, b, i);
+    }
   }
   return sim;
 }

@@ -411,7 +411,9 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
       }
     }
     acc.rays += end - begin;
-    for (auto& h : acc.listeners) h.closeChunk();
+    // The chunk's batch by its first ray's index (a fixed share of the rays, whatever the thread count).
+    const int batch = options.batches > 0 ? static_cast<int>(begin * static_cast<std::uint64_t>(options.batches) / options.rays) : -1;
+    for (auto& h : acc.listeners) h.closeChunk(batch, options.batches, static_cast<double>(end - begin));
     if (options.in_flight) acc.in_flight.closeChunk();
   };
   RoomTraceResult result = core::deterministicReduce<RoomTraceResult>(

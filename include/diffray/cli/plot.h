@@ -33,9 +33,13 @@ std::string gnuplotQuoted(const std::string& s);
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results);
 
 /// The energy decay (Schroeder) curves of every band, in dB, one panel per listener (`names`), from the
-/// responses' total histograms (`diffray ir --plot`). Throws core::InputError naming --plot on failure.
+/// responses' total histograms (`diffray ir --plot`). `flags` (optional, [listener][band]: "ok", "noisy",
+/// "negative_energy", ir::BandUncertainty::flagName) label marked bands in the key; a curve that rises
+/// (negative energy in a signed histogram) is drawn dashed and says so. Throws core::InputError naming
+/// --plot on failure.
 void writeDecayPlot(const std::string& png_path, const std::vector<std::string>& names,
-                    const std::vector<ir::EnergyResponse>& responses);
+                    const std::vector<ir::EnergyResponse>& responses,
+                    const std::vector<std::vector<std::string>>& flags = {});
 
 /// `diffray compare --plot`: one panel per listener (every one) of level re free field against frequency
 /// (UTD and exact on the fine grid as lines, band levels as points), then one panel per band of level against

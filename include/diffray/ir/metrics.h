@@ -88,8 +88,14 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
 /// "125"); NaN as null. Embed it in ordered_json objects too, or the keys are sorted again.
 nlohmann::ordered_json metricsJson(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
 
+struct BandUncertainty;  // ir/uncertainty.h
+
 /// A text table, one row per band (T20 T30 EDT in s, C50 C80 in dB, D50, Ts in ms, decay range in dB),
 /// "-" where a figure is NaN and '*' after a filter-limited one, followed by a note on each mark used.
-std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics);
+/// With `uncertainty` (markMetrics' marks, one per band): '?' after a figure whose standard error exceeds
+/// its JND, '!' for one not available because of negative energy, and a last column "flag" (ok, noisy,
+/// neg).
+std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics>& metrics,
+                         const std::vector<BandUncertainty>* uncertainty = nullptr);
 
 }  // namespace diffray::ir

@@ -21,6 +21,11 @@ struct EnergyResponse {
   double bin_s = 0.001;
   std::vector<std::vector<double>> traced;  ///< [band][bin], J/m² per bin, arrivals excluded
   std::vector<Arrival> arrivals;
+  /// The traced part again, split into independent batches of rays: [batch][band][bin], Σ over batches =
+  /// traced; batch_weights[k] is batch k's share (its rays). Empty when the tracer kept none. For the
+  /// metrics' standard errors (ir/uncertainty.h).
+  std::vector<std::vector<std::vector<double>>> batches;
+  std::vector<double> batch_weights;
 
   int bins() const { return traced.empty() ? 0 : static_cast<int>(traced[0].size()); }
   /// traced + arrivals binned: the band's whole energy histogram (what the metrics are computed from).

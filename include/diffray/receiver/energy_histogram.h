@@ -2,6 +2,10 @@
 // A listener's energy field: a dense band × time-bin array of signed energy (style.md: the energy field
 // as channel × band × bin, with a named bin width; stored bin-major, see index()), plus the sum of squared chunk totals per cell so that
 // each cell has a standard error from the chunk-to-chunk scatter (as ScreenTally, receiver/screen.h).
+// Closing a chunk into batch k (closeChunk(k, weight)) also adds it to that batch's own band × bin totals:
+// K independent sub-histograms (allocated when first used, so a chunk accumulator holds only the batches of
+// its chunks), from which nonlinear figures of the whole get a jackknife standard error (ir/uncertainty.h).
+// Memory: bands × bins doubles per batch used, K·bands·bins in a merged total.
 // Units: energy per unit area (J/m², the fluence through the listener), normalised by the tracer so that
 // a source of power 1 W gives 1/r² at distance r in free field; bin b covers [b·bin_s, (b+1)·bin_s).
 // One per chunk, merged in a fixed order (core/parallel.h); not synchronised.
@@ -34,31 +38,12 @@ class EnergyHistogram {
   double* openRow(int bin) { return &chunk_[index(0, bin)]; }
   /// Adds energy straight to the totals (deterministic contributions such as image sources: no scatter).
   void addExact(int band, int bin, double energy) { exact_[index(band, bin)] += energy; }
-  /// Folds the open chunk into the totals.
-  void closeChunk() {
-    for (std::size_t i = 0; i < chunk_.size(); ++i) {
-      sum_[i] += chunk_[i];
-      sum_sq_[i] += chunk_[i] * chunk_[i];
-      chunk_[i] = 0.0;
-    }
-    ++chunks_;
-  }
-  void merge(const EnergyHistogram& o) {
-    for (std::size_t i = 0; i < sum_.size(); ++i) {
-      sum_[i] += o.sum_[i];
-      sum_sq_[i] += o.sum_sq_[i];
-      exact_[i] += o.exact_[i];
-    }
-    chunks_ += o.chunks_;
-  }
-  /// Multiplies totals (and squared totals consistently) by `factor`, e.g. 1/rays.
-  void scale(double factor) {
-    for (std::size_t i = 0; i < sum_.size(); ++i) {
-      sum_[i] *= factor;
-      sum_sq_[i] *= factor * factor;
-      exact_[i] *= factor;
-    }
-  }
+  /// Folds the open chunk into the totals and, with batch ≥ 0, into batch `batch` (of `batches`), whose
+  /// weight grows by `weight` (e.g. the chunk's rays: a batch's share of the whole).
+  void closeChunk(int batch = -1, int batches = 0, double weight = 0.0);
+  void merge(const EnergyHistogram& o);
+  /// Multiplies totals (and squared totals consistently, and the batches) by `factor`, e.g. 1/rays.
+  void scale(double factor);
   /// Traced plus exact energy of a cell.
   double value(int band, int bin) const {
     const std::size_t i = index(band, bin);
@@ -76,6 +61,13 @@ class EnergyHistogram {
     return out;
   }
   std::uint64_t chunks() const { return chunks_; }
+  /// Batches (0: none kept); batch k's traced energy in a cell (0 for a batch no chunk went to), and its weight.
+  int batches() const { return static_cast<int>(batch_.size()); }
+  double batchValue(int k, int band, int bin) const {
+    const auto& b = batch_[static_cast<std::size_t>(k)];
+    return b.empty() ? 0.0 : b[index(band, bin)];
+  }
+  double batchWeight(int k) const { return batch_weight_[static_cast<std::size_t>(k)]; }
 
  private:
   /// Cells are bin-major: a bin's bands are adjacent, so that a listener's score (every band at one time)
@@ -84,6 +76,8 @@ class EnergyHistogram {
   int bands_ = 0, bins_ = 0;
   double bin_s_ = 0.001;
   std::vector<double> sum_, sum_sq_, chunk_, exact_;
+  std::vector<std::vector<double>> batch_;  ///< per batch: its cells (empty until a chunk goes to it)
+  std::vector<double> batch_weight_;
   std::uint64_t chunks_ = 0;
 };
 

@@ -85,6 +85,10 @@ struct RoomTraceOptions {
   /// too many periods across the sphere) score the portal's first flight.
   bool portal = false;
   const EmissionTarget* aim = nullptr;  ///< null: rays leave uniformly over the sphere
+  /// Independent batches the listener histograms keep apart (EnergyHistogram::closeChunk): ray i goes to
+  /// batch ⌊i·batches/rays⌋ with its chunk (chunks have independent streams and QMC shifts), for the
+  /// jackknife standard errors of the metrics (ir/uncertainty.h); 0 keeps none.
+  int batches = 16;
 };
 
 struct RoomTraceResult {
@@ -108,7 +112,10 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
 
 /// Bins of a listener histogram of `length_s` in bins of `bin_s`, after checking that the histograms of
 /// all `listeners` × `bands` fit kMaxHistogramCells cells (each cell is 4 doubles, and the parallel reduce
-/// keeps about ten accumulators alive at once: 1e7 cells ≈ 3 GB at the peak). Throws InputError naming
+/// keeps about ten accumulators alive at once: 1e7 cells ≈ 3 GB at the peak). The batches (RoomTraceOptions::
+/// batches) add one double per cell for each batch a live accumulator holds: an accumulator holds those of
+/// its own chunks, so about threads × (batches + log2(chunks)) at the peak (two-rooms at 1M rays: 40 → 54 MB;
+/// at the cap with 2 threads ≈ 3.7 GB more). Throws InputError naming
 /// output.histogram_bin_s otherwise: before the cap a 600 s IR in 0.1 ms bins, which the scene file accepts,
 /// ran the machine out of memory.
 inline constexpr double kMaxHistogramCells = 1e7;
