@@ -99,6 +99,8 @@ std::unique_ptr<BandGrid> buildBandGrid(const room::Room& room, const WaveOption
   const std::string at = format(" at h = %.4g m", bp.h_m);
   for (const auto& s : room.sources) {
     const long node = sourceNode(room, g, s.position_m);
+    if (g.nearestNode(s.position_m) < 0)
+      throw core::InputError(where(room), "source " + s.name + " is outside the room: beyond the FDTD grid's domain");
     if (node < 0)
       throw core::InputError(where(room), "source " + s.name + ": no grid node near it" + at + " on its side of the walls");
     bg->sources.push_back(static_cast<std::size_t>(node));
@@ -218,6 +220,7 @@ WaveResult simulateWave(const room::Room& room, const WaveOptions& o) {
   result.warnings = plan.warnings;
   const double c = plan.speed_of_sound_m_s;
   for (const auto& bp : plan.bands) buildBandGrid(room, o, bp);  // every check before the first time step
+  if (o.on_start) o.on_start();
   const int bins = static_cast<int>(std::ceil(plan.length_s / plan.bin_s - 1e-9));
   result.listeners.resize(room.listeners.size());
   double power = 0.0;
@@ -228,8 +231,13 @@ WaveResult simulateWave(const room::Room& room, const WaveOptions& o) {
     const int b = bp.band;
     std::unique_ptr<BandGrid> bg = buildBandGrid(room, o, bp);
     std::vector<double> beta;
-    for (const auto& m : room.materials) {
+    for (std::size_t mi = 0; mi < room.materials.size(); ++mi) {
+      const auto& m = room.materials[mi];
       bool clamped = false;
+      if (room.isOpening(static_cast<int>(mi))) {  // transparent: blocks no link
+        beta.push_back(0.0);
+        continue;
+      }
       beta.push_back(admittanceForAbsorption(m.absorption[b], &clamped));
       if (clamped)
         result.warnings.push_back("material " + m.name + ": absorption " + format("%.3g", m.absorption[b]) + " in the " +

@@ -54,6 +54,8 @@ struct WaveOptions {
   int margin_cells = 3;          ///< free cells around the mesh's bounding box
   int max_points = 64;           ///< recording nodes per listener at most
   std::function<void(std::uint64_t)> on_progress;  ///< time steps done (called every few steps)
+  /// Called once every check has passed, just before the first time step (e.g. to state the plan).
+  std::function<void()> on_start;
 };
 
 /// What one band's run needs, known before any allocation.
