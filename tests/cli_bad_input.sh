@@ -276,4 +276,25 @@ PY
 then passes=$((passes + 1)); else
   echo "FAIL: compare: good run (exit=$code) did not print the JSON lines and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
+# diffray wave (the FDTD reference): one line before any work, no JSON or CSV left.
+expect_wave_says() {  # expect_wave_says DESCRIPTION PATTERN ROOM_JSON_TEXT [ARGS...]
+  local what="$1" pattern="$2" text="$3"; shift 3
+  printf '%s\n' "$text" >"$tmp/room.json"
+  expect_clean "wave: $what" "out.*" "$pattern" wave "$tmp/room.json" -o "$tmp/out.json" --csv "$tmp/out.csv" "$@"
+}
+pillar='{"box": {"min": [1,1,0], "max": [2,2,2.5], "materials": {"all": "w"}}}'
+expect_wave_says "grid too large"       "more than half of this machine" "{$mat, $box, $src, $lis}" --bands 8000 --ppw 100
+expect_wave_says "band not in the room" "not one of the room's band"   "{$mat, $box, $src, $lis}" --bands 300
+expect_wave_says "too few points per wavelength" "ppw" "{$mat, $box, $src, $lis}" --ppw 2
+expect_wave_says "source outside the closed room" "outside the room" \
+  "{$mat, $box, \"sources\": [{\"position\": [5,1,1]}], $lis}" --bands 63
+expect_wave_says "source just outside the closed room" "outside the room" \
+  "{$mat, $box, \"sources\": [{\"position\": [4.2,1,1]}], $lis}" --bands 63
+expect_wave_says "source inside a pillar" "inside a wall" \
+  "{$mat, \"geometry\": [{\"box\": {\"min\": [0,0,0], \"max\": [4,3,2.5], \"materials\": {\"all\": \"w\"}}}, $pillar], \"sources\": [{\"position\": [1.5,1.5,1]}], $lis}" --bands 63
+expect_wave_says "listener outside the air" "no air node" \
+  "{$mat, $box, $src, \"listeners\": [{\"position\": [5,1,1], \"radius_m\": 0.2}]}" --bands 63
+expect_wave_says "listener inside a pillar" "no air node" \
+  "{$mat, \"geometry\": [{\"box\": {\"min\": [0,0,0], \"max\": [4,3,2.5], \"materials\": {\"all\": \"w\"}}}, $pillar], $src, \"listeners\": [{\"position\": [1.5,1.5,1], \"radius_m\": 0.2}]}" --bands 63
+
 finish cli_bad_input

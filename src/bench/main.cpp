@@ -8,6 +8,8 @@
 //                every band metric stays within one JND of a 4M-ray run (room_wbsdf_bench.cpp).
 //   convergence: RMS error of a validation case against its oracle as rays grow, for plain Monte Carlo and
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
+//   fdtd:        the FDTD wave reference's cell updates per second on two-rooms' 500 Hz grid beside a
+//                STREAM-like triad's bytes/s over arrays of the grid's size (fdtd_bench.cpp).
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
 //                block's duration (realtime_bench.cpp).
 //   render-is:   the light tracer's importance-sampled WBSDF shifts vs uniform shifts at equal wall time,
@@ -22,6 +24,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "fdtd_bench.h"
 #include "realtime_bench.h"
 #include "render_is_bench.h"
 #include "room_bench.h"
@@ -282,6 +285,9 @@ int main(int argc, char** argv) {
       benchConvergence("slit-fraunhofer", true);
     }
     if (which == "all" || which == "realtime") bench::benchRealtime(20.0);
+    if (which == "all" || which == "fdtd")  // `diffray_bench fdtd [STEPS]`
+      bench::benchFdtd(room::loadRoom(std::string(DIFFRAY_BENCH_ROOMS) + "/two-rooms.json"), "two-rooms",
+                       argc > 2 && which == "fdtd" ? std::stoi(argv[2]) : 400);
     if (which == "all" || which == "render-is") {
       bench::benchRenderIs(20'000'000);
       bench::benchRenderIsScene(std::string(DIFFRAY_BENCH_ROOMS) + "/light/cd.json", "cd", 10'000'000);

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   diffray::cli::Runner spectrogram = diffray::cli::addSpectrogramCommand(app, common);
   diffray::cli::Runner dry_signal = diffray::cli::addSignalCommand(app, common);
   diffray::cli::Runner render = diffray::cli::addRenderCommand(app, common);
+  diffray::cli::Runner wave = diffray::cli::addWaveCommand(app, common);
   diffray::cli::requireDecimalFloats(app);
   try {
     app.parse(argc, argv);
@@ -61,6 +62,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("spectrogram")) return finish(spectrogram());
     if (app.got_subcommand("signal")) return finish(dry_signal());
     if (app.got_subcommand("render")) return finish(render());
+    if (app.got_subcommand("wave")) return finish(wave());
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << "\n";

@@ -104,6 +104,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common);
 Runner addSpectrogramCommand(CLI::App& app, CommonOptions& common);
 Runner addSignalCommand(CLI::App& app, CommonOptions& common);
 Runner addRenderCommand(CLI::App& app, CommonOptions& common);
+Runner addWaveCommand(CLI::App& app, CommonOptions& common);
 
 /// JSON text for stdout and sidecars. File names may hold any bytes: a string that is not UTF-8 gets U+FFFD
 /// where it breaks, instead of an exception after the work is done.
