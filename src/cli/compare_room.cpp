@@ -125,6 +125,11 @@ void printRoomComparison(const room::Room& room, const compare::RoomComparison& 
       std::snprintf(buf, sizeof buf, "%s%s %.2f s", line.empty() ? "" : ", ", m.model.c_str(), m.seconds);
     line += buf;
   }
+  if (!c.free_field.empty()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, ", %s %.2f s", kApertureModel, c.free_field_seconds);
+    line += buf;
+  }
   std::printf("\n%s\n", line.c_str());
 }
 

@@ -205,29 +205,35 @@ RoomComparison compareRoom(const room::Room& room, const RoomCompareOptions& o) 
   }
 
   if (o.free_field) {
+    const auto t0 = std::chrono::steady_clock::now();
     std::string why_not, assumption;
     // The room's models are energy tracers: a door on a floor is compared with the reference whose floor
     // reflection adds as energy (compare/point_models.h).
     const auto exact = exactModelFor(room, c, why_not, assumption, true);
     out.free_field_note = exact ? assumption : why_not;
     for (std::size_t l = 0; l < nl; ++l) out.free_field.push_back(freeFieldApplicability(room, static_cast<int>(l)));
-    tbb::parallel_for(std::size_t{0}, nl, [&](std::size_t l) {
+    if (exact)
+      for (FreeFieldReference& f : out.free_field)
+        if (f.applies) f.g_db.assign(static_cast<std::size_t>(nb), RoomFigures::kNaN);
+    // One task per listener and band (the bands' costs differ by the frequency: few listeners apply).
+    tbb::parallel_for(std::size_t{0}, nl * static_cast<std::size_t>(nb), [&](std::size_t i) {
+      const std::size_t l = i / static_cast<std::size_t>(nb);
+      const int b = static_cast<int>(i % static_cast<std::size_t>(nb));
       FreeFieldReference& f = out.free_field[l];
-      if (!f.applies || !exact) return;
+      if (f.g_db.empty()) return;
       const room::Listener& li = room.listeners[l];
       const Vec3 src = room.sources[0].position_m;
       const double to_g = room.sources[0].power_w / (li.position_m - src).squaredNorm() / e10;
-      for (int b = 0; b < nb; ++b) {
-        double rel = 0.0;
-        try {
-          rel = bandRelativeEnergy(*exact, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
-                                   room.bands.upperHz(b), o.band_points);
-        } catch (const core::InputError& e) {
-          throw core::InputError(where(room, static_cast<int>(l), exact->name()), e.what());
-        }
-        f.g_db.push_back(db(rel * to_g));
+      double rel = 0.0;
+      try {
+        rel = bandRelativeEnergy(*exact, src, li.position_m, li.radius_m, room.bands.lowerHz(b), room.bands.upperHz(b),
+                                 o.band_points);
+      } catch (const core::InputError& e) {
+        throw core::InputError(where(room, static_cast<int>(l), exact->name()), e.what());
       }
+      f.g_db[static_cast<std::size_t>(b)] = db(rel * to_g);
     });
+    out.free_field_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   return out;
 }

@@ -74,6 +74,7 @@ struct RoomComparison {
   std::vector<RoomModelResult> models;  ///< the ray models in the order asked, then "wave" if given
   std::vector<FreeFieldReference> free_field;  ///< per listener (empty when not asked for)
   std::string free_field_note;  ///< what the reference assumes, or why the scene has none
+  double free_field_seconds = 0.0;
   std::vector<double> direct_s;  ///< per listener: the direct-sound time used for the early energy
   std::vector<std::string> warnings;
 };

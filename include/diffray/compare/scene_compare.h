@@ -44,7 +44,9 @@ struct LevelRow {
 
 struct SceneComparison {
   std::vector<LevelRow> rows;
-  std::vector<std::optional<double>> shadow_angle_deg;  ///< per listener: + into the shadow, in (−180, 180]
+  /// Per listener: + into the shadow, in (−180, 180]; empty on the source's side of a door or slit (no
+  /// shadow boundary there) and when the scene has no single occluder.
+  std::vector<std::optional<double>> shadow_angle_deg;
   std::string exact_note;  ///< the reference's assumption, or why there is none
   bool exact_available = false;
   std::vector<std::string> warnings;  ///< e.g. listeners hidden behind a surface (compare/scene_checks.h)
@@ -53,7 +55,11 @@ struct SceneComparison {
 };
 
 /// Throws core::InputError before any model runs for a listener that compare/scene_checks.h refuses (at the
-/// source, on the screen, or, with `aim`, seeing the source past the aim rectangle).
+/// source, on the screen, or, with `aim`, seeing the source past the aim rectangle), and, when "exact" is
+/// asked for on a door or slit, for a listener on the source's side of it (the aperture reference holds
+/// only beyond the opening's plane); each message names the listener (and the model). On a closed room
+/// (compare/room_compare.h, isEnclosedRoom) the hidden-listener warnings give way to one note that the
+/// comparison leaves out the room's reverberation.
 SceneComparison compareScene(const room::Room& room, const CompareOptions& options);
 
 /// The listener's angle past the shadow boundary of the room's single occluder, seen from the source:
