@@ -14,10 +14,11 @@
 // 10 ms for Ts), or when some replicate cannot measure it at all while the whole can. A band is
 // "negative_energy" when its energy sums to ≤ 0 with some of it negative (no figure can be given), and a
 // figure is not available "because of negative energy" (not given, even if the metrics computed one) when
-// the band's Schroeder curve (the backward sum of a signed histogram) goes below zero, where the curve
-// plunges into its zero by cancellation and reads as a steep decay, before the figure has what it needs: before the bottom of its fitting range (EDT 10, T20 25, T30 35 dB down, read
-// on the decay of the positive energy alone, which cancellation does not steepen) or before the end of its
-// early interval (C50, D50: 50 ms after the onset, C80: 80 ms).
+// the band's Schroeder curve (the backward sum of a signed histogram) goes below zero (it plunges into
+// that zero by cancellation, which reads as a steep decay) before the figure has what it needs: the bottom
+// of its fitting range (EDT 10, T20 25, T30 35 dB down, read on the decay of the positive energy alone,
+// which cancellation does not steepen) or the end of its early interval (C50, D50: 50 ms after the onset,
+// C80: 80 ms).
 // The metrics of a synthesized WAV get the histogram's standard errors: the synthesis adds its own noise,
 // which this does not count. Units: the figures' own (s, dB, fraction). Free functions: thread-safe.
 #include <array>
