@@ -204,6 +204,43 @@ TEST(IrUncertainty, NoisyFigureIsMarkedWithItsStandardErrorAndJnd) {
   }
 }
 
+// An exponential decay (T = 1 s, 60 dB/s, no noise) whose bins after t_flip are negated: its Schroeder
+// curve crosses zero where ∫_z^flip p = ∫_flip^∞ p, z = t_flip − ln2/k (k = 6 ln10/T), when the positive
+// energy alone has fallen by 10·log10((1 − e^{−k·flip})/e^{−k·flip}) dB: 18 dB for a flip at 0.3 s (T20
+// and T30, which need 25 and 35 dB, are blocked by it, EDT and C80 are not), 72 dB at 1.2 s (nothing is).
+TEST(IrUncertainty, NegativeTailBlocksOnlyTheFiguresItCuts) {
+  const core::Bands band = core::Bands::octave(1000.0, 1000.0);
+  const double k = 6.0 * std::log(10.0) / 1.0;
+  for (const double flip : {0.3, 1.2}) {
+    EnergyResponse r;
+    r.bands = band;
+    r.bin_s = kBinS;
+    r.traced.assign(1, std::vector<double>(1500, 0.0));
+    for (std::size_t i = 0; i < 1500; ++i) {
+      const double t0 = static_cast<double>(i) * kBinS;
+      r.traced[0][i] = (std::exp(-k * t0) - std::exp(-k * (t0 + kBinS))) * (t0 >= flip - 1e-9 ? -1.0 : 1.0);
+    }
+    std::vector<std::vector<double>> total{r.total(0)};
+    std::vector<BandMetrics> m = metricsFromHistograms(total, r.bin_s);
+    const auto marks = markMetrics(m, jackknifeMetrics(r));
+    const BandUncertainty& u = marks[0];
+    const double depth = 10.0 * std::log10((1.0 - std::exp(-k * flip)) / std::exp(-k * flip));
+    EXPECT_NEAR(u.schroeder_zero_s, flip - std::log(2.0) / k, 1.5 * kBinS) << flip;
+    EXPECT_NEAR(u.depth_before_zero_db, depth, 0.2) << flip;  // to a bin (0.06 dB at 60 dB/s) and rounding
+    if (flip < 1.0) {
+      EXPECT_TRUE(u.isNegative(Figure::T20) && u.isNegative(Figure::T30));
+      EXPECT_FALSE(u.isNegative(Figure::Edt) || u.isNegative(Figure::C80) || u.isNegative(Figure::C50));
+      EXPECT_STREQ(u.flagName(), "negative_energy");
+      const auto w = uncertaintyWarnings("L", band, m, marks);
+      ASSERT_EQ(w.size(), 1u);
+      EXPECT_NE(w[0].find("T20, T30 not available"), std::string::npos) << w[0];
+    } else {
+      EXPECT_NEAR(m[0].t30, 1.0, 0.01);  // cut far below its range: measured as usual
+      EXPECT_STREQ(u.flagName(), "ok");
+    }
+  }
+}
+
 TEST(IrUncertainty, WithoutBatchesThereAreNoStandardErrors) {
   const core::Bands band = core::Bands::octave(1000.0, 1000.0);
   EnergyResponse r = fixedResponse(band, -1);

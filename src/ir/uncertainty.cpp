@@ -57,6 +57,25 @@ void setValue(BandMetrics& m, Figure f, double v) {
   }
 }
 
+/// Whether the Schroeder curve's fall to zero (negative energy) keeps figure f from being measured: it
+/// comes before the curve reaches the bottom of the figure's fitting range (EDT 10, T20 25, T30 35 dB:
+/// metrics.h), or before the end of its early interval (C50, D50 50 ms, C80 80 ms after the onset).
+/// Ts can always be computed from a signed histogram.
+bool blockedByZero(const BandUncertainty& u, Figure f) {
+  if (!std::isfinite(u.schroeder_zero_s)) return false;
+  const double early = std::isfinite(u.onset_s) ? u.schroeder_zero_s - u.onset_s : 0.0;
+  switch (f) {
+    case Figure::Edt: return u.depth_before_zero_db < 10.0;
+    case Figure::T20: return u.depth_before_zero_db < 25.0;
+    case Figure::T30: return u.depth_before_zero_db < 35.0;
+    case Figure::C50:
+    case Figure::D50: return early <= 0.050;
+    case Figure::C80: return early <= 0.080;
+    case Figure::Ts: return false;
+  }
+  return false;
+}
+
 }  // namespace
 
 double figureJnd(Figure figure, double value) {
@@ -113,12 +132,27 @@ std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response) {
       any_negative |= v < 0.0;
     }
     u.negative_energy = any_negative && !(u.energy > 0.0);
-    // The Schroeder curve (backward sum) at each bin's start; the first time it is below zero.
-    double tail = 0.0;
+    // The Schroeder curve (backward sum) at each bin's start: the first time it is below zero, and how far
+    // the decay has fallen by then. That depth is read on the backward sum of the positive energy alone:
+    // the signed curve falls steeply into its zero by cancellation, however shallow the decay there.
+    std::vector<double> tail(e.size() + 1, 0.0), positive(e.size() + 1, 0.0);
     for (std::size_t i = e.size(); i-- > 0;) {
-      tail += e[i];
-      if (tail < 0.0) u.schroeder_zero_s = static_cast<double>(i) * response.bin_s;
+      tail[i] = tail[i + 1] + e[i];
+      positive[i] = positive[i + 1] + std::max(0.0, e[i]);
     }
+    for (std::size_t i = 0; i < e.size() && tail[0] > 0.0; ++i)
+      if (tail[i] < 0.0) {
+        u.schroeder_zero_s = static_cast<double>(i) * response.bin_s;
+        u.depth_before_zero_db = 10.0 * std::log10(positive[0] / positive[i]);
+        break;
+      }
+  }
+  {
+    std::vector<double> broadband(total.empty() ? 0 : total[0].size(), 0.0);
+    for (const auto& band : total)
+      for (std::size_t i = 0; i < band.size(); ++i) broadband[i] += band[i];
+    const long onset = onsetBin(broadband);
+    for (auto& u : out) u.onset_s = onset >= 0 ? static_cast<double>(onset) * response.bin_s : kNaN;
   }
   // Replicates: the whole without batch k, its traced part scaled back to all the rays.
   const std::size_t nk = response.batches.size();
@@ -180,14 +214,16 @@ std::vector<BandUncertainty> markMetrics(std::vector<BandMetrics>& metrics, cons
     }
     for (Figure f : kAllFigures) {
       const std::size_t i = static_cast<std::size_t>(f);
-      if (histogram_marks && (*histogram_marks)[b].isNegative(f)) {
+      // A figure the negative energy cuts is not given even when the metrics computed one: a curve that
+      // falls into its zero by cancellation reads as a steep decay.
+      if ((histogram_marks && (*histogram_marks)[b].isNegative(f)) ||
+          (!bm.shorter_than_filter && (m.negative_energy || blockedByZero(m, f)))) {
         setValue(bm, f, kNaN);
         m.negative[i] = true;
+        m.se[i] = kNaN;
         continue;
       }
       const double v = bm.value(f);
-      m.negative[i] = !std::isfinite(v) && (m.negative_energy || std::isfinite(m.schroeder_zero_s)) &&
-                      !bm.shorter_than_filter;
       m.noisy[i] = std::isfinite(v) && (m.unmeasurable[i] > 0 || m.se[i] > figureJnd(f, v));
       if (!std::isfinite(v)) m.se[i] = kNaN;  // no standard error for a figure not given
     }

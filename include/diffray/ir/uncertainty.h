@@ -13,8 +13,12 @@
 // (Annex A, Table A.1) just-noticeable difference (5 % for EDT, T20, T30; 1 dB for C50, C80; 0.05 for D50;
 // 10 ms for Ts), or when some replicate cannot measure it at all while the whole can. A band is
 // "negative_energy" when its energy sums to ≤ 0 with some of it negative (no figure can be given), and a
-// figure is not available "because of negative energy" when it is NaN and the band's Schroeder curve
-// reaches zero or below (the backward sum of a signed histogram), where the curve ends as a plunge.
+// figure is not available "because of negative energy" (not given, even if the metrics computed one) when
+// the band's Schroeder curve (the backward sum of a signed histogram) goes below zero (it plunges into
+// that zero by cancellation, which reads as a steep decay) before the figure has what it needs: the bottom
+// of its fitting range (EDT 10, T20 25, T30 35 dB down, read on the decay of the positive energy alone,
+// which cancellation does not steepen) or the end of its early interval (C50, D50: 50 ms after the onset,
+// C80: 80 ms).
 // The metrics of a synthesized WAV get the histogram's standard errors: the synthesis adds its own noise,
 // which this does not count. Units: the figures' own (s, dB, fraction). Free functions: thread-safe.
 #include <array>
@@ -42,7 +46,9 @@ struct BandUncertainty {
   double energy = 0.0;                ///< Σ energy of the band (traced + exact), J/m²
   double abs_energy = 0.0;            ///< Σ |energy|
   double negative_fraction = 0.0;     ///< Σ negative / Σ |energy| over the traced bins
-  double schroeder_zero_s = kNaN;     ///< first time (after emission) the Schroeder curve is ≤ 0; NaN: never
+  double schroeder_zero_s = kNaN;     ///< first time (after emission) the Schroeder curve is < 0; NaN: never
+  double depth_before_zero_db = kNaN;  ///< how far (dB) the decay of the positive energy alone has fallen then
+  double onset_s = kNaN;              ///< the response's onset (metricsFromHistograms' time zero)
   bool negative_energy = false;       ///< the band sums to ≤ 0 with negative energy in it
   std::array<bool, 7> negative{};     ///< per Figure: not available because of negative energy
   std::array<bool, 7> noisy{};        ///< per Figure: SE above its JND, or unmeasurable in some replicate
@@ -59,8 +65,8 @@ struct BandUncertainty {
 /// used) there are no standard errors, and only the negative-energy marks.
 std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response);
 /// Marks of `metrics` from the standard errors of `u` (a copy of u with noisy[] and negative[] set for
-/// these figures, and no standard error for a figure they do not give); a negative-energy band's figures
-/// are set to NaN in `metrics` (never a plain number).
+/// these figures, and no standard error for a figure they do not give); the figures that negative energy
+/// makes unavailable (all of a band that sums negative) are set to NaN in `metrics` (never a plain number).
 /// `histogram_marks`: for the metrics of a WAV synthesized from the histogram (which reads negative bins
 /// as silence), markMetrics of the histogram's own metrics: a figure the histogram cannot give because of
 /// negative energy is not given from the WAV either.
