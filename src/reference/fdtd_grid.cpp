@@ -152,6 +152,14 @@ FdtdGridSize fdtdGridSize(const room::Room& room, double h, int margin) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
+  for (const auto& src : room.sources) {
+    lo = lo.cwiseMin(src.position_m);
+    hi = hi.cwiseMax(src.position_m);
+  }
+  for (const auto& l : room.listeners) {
+    lo = lo.cwiseMin(l.position_m - l.radius_m * core::Vec3(1, 1, 1));
+    hi = hi.cwiseMax(l.position_m + l.radius_m * core::Vec3(1, 1, 1));
+  }
   FdtdGridSize s;
   s.origin = lo - (margin + 0.5) * h * core::Vec3(1, 1, 1);
   int* n[3] = {&s.nx, &s.ny, &s.nz};

@@ -8,7 +8,7 @@
 // Per band b (nominal centre f_b, edges f_lo, f_hi from room.bands):
 //  - Grid: spacing h = min(c/(ppw·f_hi), max_h) (default 10 points per wavelength at the band's upper edge,
 //    h ≤ 0.1 m), Courant number λ = factor/√3 (factor ≤ 1), dt = λh/c, c = room::speedOfSound(room.air).
-//    Axial phase-velocity error at f_hi (fdtd_scheme.h's dispersion relation): −1.2 % at 10 ppw and λ = 1/√3.
+//    Axial phase-velocity error at f_hi (fdtd_scheme.h's dispersion relation): −1.1 % at 10 ppw and λ = 1/√3 (tested).
 //  - Walls: each material's α in band b mapped to a real admittance β by the Paris formula
 //    (admittanceForAbsorption); a material that transmits part of the energy is a wall whose α counts the
 //    transmitted part as lost; openings (room::Room::isOpening) are transparent. No air absorption.

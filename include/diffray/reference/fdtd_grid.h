@@ -2,8 +2,9 @@
 // The voxel grid of the FDTD wave reference (fdtd.h): a rectilinear lattice of nodes (spacing h) over the
 // scene's bounding box plus a margin, which node-to-neighbour links a wall blocks, and which nodes are air.
 //
-// Contract. Node (i, j, k) sits at origin + h·(i, j, k), index i + nx·(j + ny·k). The origin is the mesh's
-// lower corner minus (margin + ½)·h, so the faces of a box whose sides are whole multiples of h lie half-way
+// Contract. Node (i, j, k) sits at origin + h·(i, j, k), index i + nx·(j + ny·k). The domain is the bounding
+// box of the mesh, the sources and the listeners' spheres (an open scene, a ground plane, may hold them
+// outside the mesh's box) plus a margin; the origin is that box's lower corner minus (margin + ½)·h, so the faces of a box whose sides are whole multiples of h lie half-way
 // between nodes (the finite-volume reading of the SRL boundary, Bilbao 2013). A LINK joins a node to its
 // neighbour along one axis; it is BLOCKED where the segment between the two nodes crosses a triangle that
 // is not an opening (room::Room::isOpening: an open doorway is transparent). Crossings are found per triangle
@@ -64,7 +65,8 @@ struct FdtdGrid {
   void floodFill(const std::vector<std::size_t>& seeds);
 };
 
-/// Grid dimensions for `room` at spacing h with `margin` cells around the mesh's bounding box (no allocation).
+/// Grid dimensions for `room` at spacing h with `margin` cells around the bounding box of its mesh, sources
+/// and listener spheres (no allocation).
 struct FdtdGridSize {
   core::Vec3 origin{0, 0, 0};
   int nx = 0, ny = 0, nz = 0;
