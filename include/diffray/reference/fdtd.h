@@ -24,7 +24,7 @@
 //    P/r² (J/m²-like, the ray tracers' receiver convention: a 1 W omnidirectional source gives 1/r²), from
 //    the free-field response of the injection (freeFieldFactor): E_ff(r) = (F/r)²·Σ_n (BP s)_n²·dt with the
 //    same filter on the pulse. The strength is G_b = 10·log10(E_b/E_b,ff(10 m)) = 10·log10(100·E_b/P)
-//    (ISO 3382-1 A.2.3 strength: the level re the same source's free field at 10 m).
+//    (ISO 3382-1 Annex A, sound strength: the level re the same source's free field at 10 m).
 //  - Length: WaveOptions::length_s, else room.output.ir_length_s, else 1.5 × the longest Eyring T60 of the
 //    simulated bands (room volume and enclosure, area-weighted α), capped at room.output.max_length_s; for a
 //    scene without a closed volume, 4 × the domain's diagonal / c.
