@@ -238,6 +238,10 @@ expect_compare_error "--mode bogus"          "--mode" "$rooms/two-rooms.json" --
 expect_compare_error "room mode: --aim"      "--aim: applies to free-field scenes only" "$rooms/two-rooms.json" --aim "${fast[@]}"
 expect_compare_error "room mode: --models"   'unknown model "bogus" in room mode' "$rooms/two-rooms.json" --models none,bogus "${fast[@]}"
 expect_compare_error "free-field mode on a room" "listener A: model exact: on the source's side" "$rooms/two-rooms.json" --mode free-field "${fast[@]}"
+# Room mode with the wave reference: its checks (bands, memory) before any model runs.
+expect_compare_error "room mode: wave band not in the room" "not one of the room's band" "$rooms/two-rooms.json" --models none,wave --wave-bands 300 "${fast[@]}"
+expect_compare_error "room mode: wave grid too large" "more than half of this machine" "$rooms/two-rooms.json" --models none,wave --wave-bands 8000 --wave-ppw 100 "${fast[@]}"
+expect_compare_error "free-field mode: no wave model" 'unknown model "wave" in free-field mode' "$rooms/barrier.json" --models wave
 "$bin" compare "$rooms/two-rooms.json" --rays 2000 --csv "$tmp/room.csv" >"$tmp/stdout" 2>"$tmp/stderr"
 if [ $? -eq 0 ] && [ "$(grep -c '^A,\|^B-in-view,\|^B-hidden,' "$tmp/room.csv")" -eq $((3 * 3 * 8 + 2 * 8)) ] &&
    [ "$(grep -c 'not shown, on the source' "$tmp/stdout")" -eq 1 ] && grep -q "room mode" "$tmp/stdout" &&

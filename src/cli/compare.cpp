@@ -21,6 +21,7 @@
 #include "diffray/cli/compare_room.h"
 #include "diffray/cli/plot.h"
 #include "diffray/compare/room_compare.h"
+#include "diffray/compare/wave_model.h"
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/atomic_file.h"
@@ -42,6 +43,9 @@ struct CompareCliOptions {
   std::uint64_t rays = 0;  // 0: 1e6 in free-field mode, the room file's output.rays in room mode
   int fine = 24;
   bool aim = false;
+  std::vector<double> wave_bands;  // room mode, model wave: the bands to simulate (empty: up to 500 Hz)
+  double wave_ppw = 10.0;
+  double wave_length_s = 0.0;  // 0: as long as the ray models' IR
 };
 
 // The models of `s` (comma-separated), each one of `allowed`; all of them when --models was not `given`.
@@ -171,19 +175,41 @@ void writeCompareCsv(const std::string& path, const room::Room& room, const comp
 int runRoomMode(const CompareCliOptions& o, CommonOptions& common, bool seed_given, const room::Room& room,
                 const std::vector<std::string>& warnings) {
   if (o.aim) throw core::InputError("--aim", "applies to free-field scenes only, not in room mode");
-  std::vector<std::string> models = splitModels(o.models, o.models_given, {"none", "utd", "wbsdf", "exact"}, "room");
+  std::vector<std::string> models =
+      splitModels(o.models, o.models_given, {"none", "utd", "wbsdf", "exact", "wave"}, "room");
+  if (!o.models_given) models.pop_back();  // the wave reference (minutes) only when asked for
   compare::RoomCompareOptions ro;
   ro.free_field = std::find(models.begin(), models.end(), "exact") != models.end();
+  const bool wave = std::find(models.begin(), models.end(), "wave") != models.end();
   models.erase(std::remove(models.begin(), models.end(), "exact"), models.end());
+  models.erase(std::remove(models.begin(), models.end(), "wave"), models.end());
   ro.models = models;
   ro.rays = o.rays;
   ro.seed = seed_given ? common.seed : room.output.seed;
+  reference::WaveOptions wo;
+  wo.bands_hz = o.wave_bands;
+  wo.ppw = o.wave_ppw;
+  wo.length_s = o.wave_length_s;
+  // The wave reference's own checks (bands, memory) before any model runs: one line, no work done.
+  if (wave) reference::planWave(room, wo);
   for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
   const std::uint64_t rays = (o.rays ? o.rays : room.output.rays) * room.sources.size() * models.size();
   core::Progress progress("compare " + room.name, rays);
   ro.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
+  std::unique_ptr<core::Progress> wave_progress;
+  if (wave)
+    // Run after the ray models, on the room with their IR length (compareRoom): its plan is stated then.
+    ro.wave = [wo, &progress, &wave_progress](const room::Room& timed) mutable {
+      progress.finish();
+      const reference::WavePlan plan = reference::planWave(timed, wo);
+      printWavePlan(timed, plan);
+      wave_progress = std::make_unique<core::Progress>("compare " + timed.name + " wave", plan.total_steps);
+      wo.on_progress = [p = wave_progress.get()](std::uint64_t n) { p->add(n); };
+      return compare::waveHistograms(timed, reference::simulateWave(timed, wo));
+    };
   const compare::RoomComparison c = compare::compareRoom(room, ro);
   progress.finish();
+  if (wave_progress) wave_progress->finish();
   for (const auto& w : c.warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
   OutputFiles written;  // replaced together: a later failure leaves the previous files
   if (!o.plot.empty()) written.write(o.plot, [&](const std::string& f) { writeRoomComparePlot(f, room, c); });
@@ -213,9 +239,9 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       "the free-field energy of the same source at 10 m, ISO 3382-1), early (the energy in the 20 ms from the "
       "direct-sound time, same reference), EDT, T30, C50, C80. The free-field aperture reference (exact) is "
       "shown only for listeners beyond the door's plane from the source (the direct sound through the door, "
-      "read beside the early energy); for the others the table says why. A wave-model slot "
-      "(compare/room_compare.h) adds a \"wave\" model and each ray model's difference from it (dB; % for "
-      "EDT and T30).");
+      "read beside the early energy); for the others the table says why. --models ...,wave adds the FDTD "
+      "wave reference (as `diffray wave`, as long as the ray models' IR) and each ray model's difference from "
+      "it (dB; % for EDT and T30).");
   sub->add_option("scene", o->scene, "scene file (rooms/README.md; occluders under \"occluders\")")
       ->check(inputPathValidator())
       ->required();
@@ -226,7 +252,9 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       ->capture_default_str();
   CLI::Option* models_option = sub->add_option("--models", o->models,
                   "comma-separated; free-field mode: wbsdf, utd, exact (default all); room mode: none, utd, wbsdf, "
-                  "exact (default all; exact = the free-field aperture reference where it applies)");
+                  "exact, wave (default all but wave; exact = the free-field aperture reference where it applies; "
+                  "wave = the FDTD wave reference of `diffray wave`, minutes, and every ray model's difference "
+                  "from it)");
   addRaysOption(sub, o->rays, "rays (free-field: WBSDF rays, default 1e6; room: per model and source, default the "
                               "room file's output.rays)");
   CLI::Option* seed_option =
@@ -242,6 +270,17 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--fine-per-octave", o->fine, "free-field mode: fine-grid frequencies per octave for UTD and exact")
       ->transform(wholeNumberValidator(1, 400))
       ->capture_default_str();
+  sub->add_option("--wave-bands", o->wave_bands,
+                  "room mode, model wave: octave band centres the FDTD reference simulates (default: every room "
+                  "band up to 500 Hz)")
+      ->delimiter(',');
+  sub->add_option("--wave-ppw", o->wave_ppw, "room mode, model wave: grid points per wavelength at each band's upper edge")
+      ->check(CLI::Range(4.0, 100.0))
+      ->capture_default_str();
+  sub->add_option("--wave-length", o->wave_length_s,
+                  "room mode, model wave: simulated length in s (default: as long as the ray models' IR; a decay "
+                  "slower than theirs needs more for its T30)")
+      ->check(CLI::Range(1e-3, 120.0));
   sub->add_flag("--aim", o->aim,
                 "free-field mode: aim every WBSDF ray at the scene's single occluder (valid only when every path to "
                 "the listeners crosses it: an edge or a door in free field)");

@@ -89,6 +89,23 @@ std::string fmt(double v, const char* f) {
 
 }  // namespace
 
+// The plan of a wave run on stderr, before its first time step: per band the grid, its steps and memory and
+// the axial phase error at the band's top; then the length, the peak memory and the threads.
+void printWavePlan(const room::Room& room, const reference::WavePlan& plan) {
+  double peak = 0.0;
+  for (const auto& bp : plan.bands) {
+    peak = std::max(peak, bp.bytes);
+    std::fprintf(stderr,
+                 "wave: %s Hz: h = %.4g m, dt = %.4g ms, grid %d x %d x %d (%.3g nodes), %ld steps x %zu source(s), "
+                 "~%.2f GB; axial phase error at %.0f Hz %.2f %%\n",
+                 room.bands.label(bp.band).c_str(), bp.h_m, 1e3 * bp.dt_s, bp.nx, bp.ny, bp.nz,
+                 double(bp.nx) * bp.ny * bp.nz, bp.steps, room.sources.size(), bp.bytes / 1e9,
+                 room.bands.upperHz(bp.band), 100.0 * bp.phase_error_top);
+  }
+  std::fprintf(stderr, "wave: %.3g s simulated, peak memory ~%.2f GB of %.1f GB, %d thread(s)\n", plan.length_s,
+               peak / 1e9, plan.physical_bytes / 1e9, core::ThreadLimit::current());
+}
+
 Runner addWaveCommand(CLI::App& app, CommonOptions& common) {
   auto o = std::make_shared<WaveCliOptions>();
   CLI::App* sub = app.add_subcommand(
@@ -129,18 +146,7 @@ Runner addWaveCommand(CLI::App& app, CommonOptions& common) {
     wo.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
     wo.on_start = [&]() {
       for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
-      double peak = 0.0;
-      for (const auto& bp : plan.bands) {
-        peak = std::max(peak, bp.bytes);
-        std::fprintf(stderr,
-                     "wave: %s Hz: h = %.4g m, dt = %.4g ms, grid %d x %d x %d (%.3g nodes), %ld steps x %zu source(s), "
-                     "~%.2f GB; axial phase error at %.0f Hz %.2f %%\n",
-                     room.bands.label(bp.band).c_str(), bp.h_m, 1e3 * bp.dt_s, bp.nx, bp.ny, bp.nz,
-                     double(bp.nx) * bp.ny * bp.nz, bp.steps, room.sources.size(), bp.bytes / 1e9,
-                     room.bands.upperHz(bp.band), 100.0 * bp.phase_error_top);
-      }
-      std::fprintf(stderr, "wave: %.3g s simulated, peak memory ~%.2f GB of %.1f GB, %d thread(s)\n", plan.length_s,
-                   peak / 1e9, plan.physical_bytes / 1e9, core::ThreadLimit::current());
+      printWavePlan(room, plan);
     };
     const reference::WaveResult r = reference::simulateWave(room, wo);
     progress.finish();

@@ -165,6 +165,7 @@ RoomComparison compareRoom(const room::Room& room, const RoomCompareOptions& o) 
   if (room.sources.size() > 1)
     out.warnings.push_back("the room has several sources: G is re their total power, the early window starts at the nearest one's direct sound, and the free-field reference uses the first");
 
+  double length_s = 0.0;  // the ray models' IR length (the room's, or the pilot's automatic one)
   for (const std::string& model : o.models) {
     transport::RoomSimulationOptions so;
     so.rays = o.rays;
@@ -174,6 +175,7 @@ RoomComparison compareRoom(const room::Room& room, const RoomCompareOptions& o) 
     so.on_progress = o.on_progress;
     const auto t0 = std::chrono::steady_clock::now();
     const transport::RoomSimulation sim = transport::simulateRoom(room, so);
+    length_s = std::max(length_s, sim.length_s);
     RoomModelResult res;
     res.model = model;
     res.rays = sim.rays;
@@ -191,7 +193,10 @@ RoomComparison compareRoom(const room::Room& room, const RoomCompareOptions& o) 
 
   if (o.wave) {
     const auto t0 = std::chrono::steady_clock::now();
-    const ListenerHistograms h = runWave(room, o.wave);
+    // The wave model runs as long as the ray models did when the room leaves its length to them.
+    room::Room timed = room;
+    if (!(timed.output.ir_length_s > 0.0) && length_s > 0.0) timed.output.ir_length_s = length_s;
+    const ListenerHistograms h = runWave(timed, o.wave);
     RoomModelResult wave;
     wave.model = "wave";
     wave.figures = figuresOf(room, "wave", h.energy, h.bin_s, out.direct_s, e10);

@@ -13,6 +13,10 @@
 #include "diffray/core/error.h"
 #include "diffray/room/room.h"
 
+namespace diffray::reference {
+struct WavePlan;
+}
+
 namespace diffray::cli {
 
 using Runner = std::function<int()>;
@@ -113,5 +117,8 @@ template <class Json>
 std::string jsonText(const Json& j, int indent = -1) {
   return j.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
+
+/// `diffray wave`'s statement of a run's plan on stderr (grid, memory, steps per band), before any work.
+void printWavePlan(const room::Room& room, const reference::WavePlan& plan);
 
 }  // namespace diffray::cli

@@ -87,6 +87,8 @@ struct RoomCompareOptions {
   bool free_field = true;  ///< compute the free-field aperture reference where it applies
   int band_points = 32;    ///< its frequencies per band
   /// The wave reference; unset: none. When set, its figures and every ray model's difference are reported.
+  /// It is given the room with output.ir_length_s set to the ray models' IR length when the room leaves the
+  /// length automatic (so its decays are as long as theirs).
   HistogramModel wave;
   std::function<void(std::uint64_t)> on_progress;  ///< rays done, over all ray models
 };
