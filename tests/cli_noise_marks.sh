@@ -1,6 +1,6 @@
 #!/bin/bash
 # diffray ir's marks on noisy and negative-energy bands, end to end through the CLI: two-rooms with WBSDF
-# diffraction at 3000 rays per source (a few seconds), where bands of the listeners behind the door sum
+# diffraction (the plain signed estimator, --wbsdf-continuation wigner) at 3000 rays per source (a few seconds), where bands of the listeners behind the door sum
 # negative. Each band that sums negative (from the CSV histograms, summed here) must be flagged
 # "negative_energy" in the sidecar with null figures (histogram and WAV alike), be named in one warning on
 # stderr and in the sidecar's warnings, and show no number in its table rows; every band flagged ok has no
@@ -9,7 +9,7 @@ set -u
 . "$(dirname "$0")/cli_lib.sh"
 rooms="$(cd "$(dirname "$0")/../rooms" && pwd)"
 
-"$bin" ir "$rooms/two-rooms.json" --diffraction wbsdf --rays 3000 --length 0.5 --seed 1 -o "$tmp/out.wav" \
+"$bin" ir "$rooms/two-rooms.json" --diffraction wbsdf --wbsdf-continuation wigner --rays 3000 --length 0.5 --seed 1 -o "$tmp/out.wav" \
   >"$tmp/table.txt" 2>"$tmp/stderr"
 code=$?
 if [ "$code" -ne 0 ]; then

@@ -263,6 +263,7 @@ TEST(RoomUncertainty, TracedBandsThatSumNegativeAreMarked) {
     o.seed = seed;
     o.length_s = 0.5;
     o.diffraction = "wbsdf";
+    o.portal = false;  // the plain signed estimator: at 3000 rays some of its bands sum negative
     const transport::RoomSimulation sim = transport::simulateRoom(room, o);
     for (std::size_t l = 0; l < sim.listeners.size(); ++l) {
       const EnergyResponse& r = sim.listeners[l];
