@@ -59,7 +59,7 @@ TEST(AudioWav, Float32RoundTripIsBitExact) {
 }
 
 // The WAVE header per Microsoft's WAVEFORMATEXTENSIBLE (the form a 32-bit float file of more than two
-// channels requires; readers such as sox warn on a plain 16-byte fmt chunk for float): a 40-byte fmt chunk,
+// channels requires; a plain 16-byte fmt chunk for float lacks the cbSize the spec asks for): a 40-byte fmt chunk,
 // format tag 0xFFFE, cbSize 22, 32 valid bits, the IEEE-float sub-format GUID, and a fact chunk (required for
 // every format but PCM). Read byte by byte here, for both writers (whole buffer and streaming).
 void expectExtensibleFloatHeader(const std::string& path, int channels) {

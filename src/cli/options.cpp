@@ -165,8 +165,9 @@ void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order) 
 void addContinuationOption(CLI::App* sub, bool& portal) {
   sub->add_option_function<std::string>(
          "--wbsdf-continuation", [&portal](const std::string& v) { portal = v == "portal"; },
-         "wbsdf: how a ray goes on past an opening once next-event estimation has scored its first flight. "
-         "portal: in the direction law of the whole opening (its far-field pattern), a positive weight; wigner: "
+         "wbsdf: how a ray goes on past a door, slit or edge once next-event estimation has scored its first "
+         "flight. portal: in every band along one direction, across an opening drawn from the whole opening's "
+         "far-field pattern (a positive weight; across an edge from its kernel, signed); wigner: in one band, "
          "from the Wigner distribution at the hit point, a signed weight (noisier in reverberant rooms)")
       ->check(CLI::IsMember({"portal", "wigner"}))
       ->default_str(portal ? "portal" : "wigner");

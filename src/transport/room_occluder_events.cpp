@@ -9,32 +9,43 @@
 
 namespace diffray::transport::detail {
 
-void Tracer::chooseBand(core::FastRng& rng, Path& s) const {
-  int live[core::kMaxBands], n = 0;
+Tracer::BandPick Tracer::pickBand(core::FastRng& rng, const Path& s) const {
+  BandPick p;
   for (int b = 0; b < bands; ++b)
-    if (s.e[b] != 0.0) live[n++] = b;
-  if (n == 0) return;
-  // One uniform picks the band and, rescaled within the band's slot, the frequency.
-  const double x = (s.has_qmc ? s.qmc[2] : rng.uniform()) * n;
-  const int pick = std::min(n - 1, static_cast<int>(x));
-  const int b = live[pick];
-  const double e_b = s.e[b] * n;
+    if (s.e[b] != 0.0) p.live[p.n++] = b;
+  if (p.n == 0) return p;
+  // One uniform picks the band and, rescaled within the band's slot, the place of the frequency in it
+  // (quasi-random at the path's first occluder).
+  const double x = (s.has_qmc && s.diffractions == 0 ? s.qmc[2] : rng.uniform()) * p.n;
+  p.pick = std::min(p.n - 1, static_cast<int>(x));
+  p.place = std::min(1.0, x - p.pick);
+  return p;
+}
+
+double Tracer::wavelengthAt(int b, double place) const {
+  return opt.speed_of_sound_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
+}
+
+void Tracer::chooseBand(core::FastRng& rng, Path& s) const {
+  const BandPick p = pickBand(rng, s);
+  if (p.n == 0) return;
+  const int b = p.live[p.pick];
+  const double e_b = s.e[b] * p.n;
   s.e = core::bandFill(0.0);
   s.e[b] = e_b;
   s.band = b;
-  const double f = room.bands.lowerHz(b) + std::min(1.0, x - pick) * (room.bands.upperHz(b) - room.bands.lowerHz(b));
-  s.lambda_m = opt.speed_of_sound_m_s / f;
+  s.lambda_m = wavelengthAt(b, p.place);
 }
 
 std::uint64_t Tracer::nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
-                              std::uint64_t& floor_served) const {
+                              std::uint64_t& floor_served, bool sample_when_nan) const {
   const int b = s.band;
   const double xi[2] = {rng.uniform(), rng.uniform()};  // a door's vertical shift (expectedSphereScore)
   std::uint64_t served = 0;
   floor_served = 0;
   if (floor_plane[k] >= 0)
     for (std::size_t l = 0; l < spheres.size() && l < 64; ++l)
-      if (nextEventViaFloor(acc, s, k, n_in, l, xi)) floor_served |= std::uint64_t{1} << l;
+      if (nextEventViaFloor(acc, rng, s, k, n_in, l, xi, sample_when_nan)) floor_served |= std::uint64_t{1} << l;
   for (std::size_t l = 0; l < spheres.size() && l < 64; ++l) {
     const Vec3 q = spheres[l].centre - s.pos;
     const double L = q.norm();
@@ -47,10 +58,13 @@ std::uint64_t Tracer::nextEvent(RoomTraceResult& acc, core::FastRng& rng, const 
     // Hidden listeners are served too: nothing of the segment reaches them straight (estimate 0).
     served |= std::uint64_t{1} << l;
     if (h.valid() && h.t < L - spheres[l].radius_m) continue;
-    const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, spheres[l].centre, spheres[l].radius_m, xi);
+    double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, spheres[l].centre, spheres[l].radius_m, xi);
     if (std::isnan(v)) {
-      served &= ~(std::uint64_t{1} << l);
-      continue;
+      if (!sample_when_nan) {
+        served &= ~(std::uint64_t{1} << l);
+        continue;
+      }
+      v = sampledSphereScore(rng, s, k, spheres[l].centre, spheres[l].radius_m);
     }
     if (v == 0.0) continue;
     const double path = s.path_m + L;
@@ -61,8 +75,20 @@ std::uint64_t Tracer::nextEvent(RoomTraceResult& acc, core::FastRng& rng, const 
   return served;
 }
 
-bool Tracer::nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const Vec3& n_in, std::size_t l,
-                             const double* xi) const {
+double Tracer::sampledSphereScore(core::FastRng& rng, const Path& s, int k, const Vec3& centre, double radius_m) const {
+  double xi[4];
+  for (double& v : xi) v = rng.uniform();
+  const RoomOccluders::Scatter sc = opt.occluders->scatter(k, s.pos, s.dir, s.lambda_m, xi);
+  if (!sc.alive) return 0.0;
+  const receiver::Sphere sphere{centre, radius_m};
+  const double o[3] = {s.pos.x(), s.pos.y(), s.pos.z()}, d[3] = {sc.dir.x(), sc.dir.y(), sc.dir.z()};
+  double t_in, t_out;
+  if (!sphere.chordSpan(o, d, 0.0, 1e300, t_in, t_out)) return 0.0;
+  return sc.weight * sphere.chordWeight(t_out - t_in) / sphere.crossSection();
+}
+
+bool Tracer::nextEventViaFloor(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
+                             std::size_t l, const double* xi, bool sample_when_nan) const {
   const MirrorPlane& fp = geometry.planes()[floor_plane[k]];
   const receiver::Sphere& sp = spheres[l];
   const double height = fp.normal.dot(sp.centre) - fp.offset;
@@ -79,8 +105,11 @@ bool Tracer::nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const
   const Vec3 up = fp.normal.dot(leg) > 0.0 ? fp.normal : Vec3(-fp.normal);
   const SegmentHit back = cast(r + eps_m * up, leg / leg_len);
   if (back.valid() && back.t < leg_len - sp.radius_m) return true;  // the reflected leg is blocked
-  const double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, image, sp.radius_m, xi);
-  if (std::isnan(v)) return false;
+  double v = opt.occluders->expectedSphereScore(k, s.pos, s.dir, s.lambda_m, image, sp.radius_m, xi);
+  if (std::isnan(v)) {
+    if (!sample_when_nan) return false;
+    v = sampledSphereScore(rng, s, k, image, sp.radius_m);
+  }
   const room::Material& m = room.materials[geometry.triangle(h.triangle).material];
   const double reflect = (1.0 - m.absorption[s.band]) * (1.0 - m.scattering[s.band]);
   const double path = s.path_m + L;
@@ -101,7 +130,7 @@ void Tracer::leaveOccluder(Path& s, const Vec3& dir, const Vec3& n_in) const {
 bool Tracer::scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
   ++acc.occluder_events;
   if (opt.next_event && opt.occluders->nextEventSupported(k)) {
-    s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor);
+    s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor, false);
     s.floor_plane = floor_plane[k];
   }
   double xi[4];
@@ -122,24 +151,18 @@ bool Tracer::scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s
 
 bool Tracer::portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
   ++acc.occluder_events;
-  int live[core::kMaxBands], n = 0;
-  for (int b = 0; b < bands; ++b)
-    if (s.e[b] != 0.0) live[n++] = b;
+  const bool first = s.has_qmc && s.diffractions == 0;  // before pickBand: the quasi-random uniforms' turn
+  const BandPick bp = pickBand(rng, s);
+  const int n = bp.n, pick = bp.pick;
+  const int* live = bp.live;
   if (n == 0) return false;
-  const bool first = s.has_qmc && s.diffractions == 0;
-  const double x = (first ? s.qmc[2] : rng.uniform()) * n;
-  const int pick = std::min(n - 1, static_cast<int>(x));
-  const double place = std::min(1.0, x - pick);
   double lambda[core::kMaxBands];
-  for (int i = 0; i < n; ++i) {
-    const int b = live[i];
-    lambda[i] = opt.speed_of_sound_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
-  }
+  for (int i = 0; i < n; ++i) lambda[i] = wavelengthAt(live[i], bp.place);
   Path one = s;
   one.band = live[pick];
   one.lambda_m = lambda[pick];
   one.e[one.band] = s.e[one.band] * n;
-  s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor);
+  s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor, true);
   s.floor_plane = floor_plane[k];
   double xi[4];
   for (double& v : xi) v = rng.uniform();

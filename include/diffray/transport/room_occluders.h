@@ -57,7 +57,10 @@ class RoomOccluders {
   /// that of its own law. Opening axes draw from the opening's far-field pattern |T(u)|²/∫|t|²
   /// (wbsdf/far_field.h) instead of W(x,·): the product of W's two marginals, exact in both (the energy through
   /// each point, the pattern of the whole opening), positive, without W's correlation of position and
-  /// direction (its near-field fringes: the caller's next-event estimate keeps those). Edge axes from the edge kernel (signed), uniform axes pass. For occluders that support
+  /// direction (its near-field fringes: the caller's next-event estimate keeps those). Both marginals hold
+  /// over the whole line; the propagating range cuts the two differently (W's propagating part depends on
+  /// the hit point, the pattern's does not), a difference of second order in the cut. An occluder's `faces`
+  /// factor (rigid or soft edges) multiplies the draw as in scatter(), with the nearer edge. Edge axes from the edge kernel (signed), uniform axes pass. For occluders that support
   /// next-event estimation (the caller's next-event estimate serves the first flight with the exact W).
   PortalScatter scatterPortal(int k, const core::Vec3& p, const core::Vec3& dir, const double* lambda_m, int n,
                               int pick, const double xi[4], double* weight) const;

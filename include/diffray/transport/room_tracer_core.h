@@ -97,6 +97,17 @@ struct Tracer {
   void tracePath(RoomTraceResult& acc, core::FastRng& rng, const Vec3& start, const Vec3& dir0,
                  const core::BandArray& energy0, const double* qmc = nullptr) const;
 
+  // The bands with energy (live[0 … n)), the one picked uniformly among them and the place of the
+  // frequency inside it, in [0, 1), from one uniform (quasi-random at the path's first occluder).
+  struct BandPick {
+    int live[core::kMaxBands];
+    int n = 0, pick = 0;
+    double place = 0.0;
+  };
+  BandPick pickBand(core::FastRng& rng, const Path& s) const;
+  // The wavelength at `place` in [0, 1) across band b.
+  double wavelengthAt(int b, double place) const;
+
   // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
   // times their count keeps every band unbiased), at one frequency drawn uniformly inside the band
   // (design.md §2). One band rather than a split into all of them: a split multiplies the work after a
@@ -106,16 +117,23 @@ struct Tracer {
   // Next-event estimation at occluder k (RoomOccluders::expectedSphereScore): every listener in view of the
   // hit point gets the expected score of the scattered ray's next segment, at its arrival time, with the
   // air absorption of the whole path. Returns the listeners it served (bit l; the first 64), whose score
-  // of that segment the ray must then skip; the others score it as usual.
+  // of that segment the ray must then skip; the others score it as usual. Where the quadrature declines
+  // (NaN: too many kernel periods across the sphere) a listener is left to the ray, or, with
+  // `sample_when_nan` (the portal, whose ray does not follow W), served by one direction drawn from W
+  // (sampledSphereScore), so that which listeners are served does not depend on the band picked.
   std::uint64_t nextEvent(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
-                          std::uint64_t& floor_served) const;
+                          std::uint64_t& floor_served, bool sample_when_nan) const;
+
+  // One draw of the score that expectedSphereScore integrates: a direction from W at the hit point
+  // (RoomOccluders::scatter, signed weight), scored by the sphere it crosses (chord over cross-section).
+  double sampledSphereScore(core::FastRng& rng, const Path& s, int k, const Vec3& centre, double radius_m) const;
 
   // Next-event estimation through one specular bounce off a door's floor (the sill's mirror plane): the
   // listener's image below the floor seen from the hit point, if that line meets the floor on a triangle of
   // its plane and the reflected leg reaches the listener, times the floor's specular reflectance
   // (1 − α)(1 − s). True when it served the listener (the ray then skips its score after such a bounce).
-  bool nextEventViaFloor(RoomTraceResult& acc, const Path& s, int k, const Vec3& n_in, std::size_t l,
-                         const double* xi) const;
+  bool nextEventViaFloor(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
+                         std::size_t l, const double* xi, bool sample_when_nan) const;
 
   // The path leaves an occluder along `dir`, just off its plane on the side it goes to.
   void leaveOccluder(Path& s, const Vec3& dir, const Vec3& n_in) const;
