@@ -235,7 +235,7 @@ TEST(StatIrSynthesis, PoissonRateFollowsTheImageSourceDensity) {
 
 // The metrics of the synthesized IR against those of the histogram it came from (metricsFromHistograms:
 // the same onset rule), for an exponential decay (T = 1 s) behind a direct sound, 1 ms bins, 48 kHz,
-// V = 200 m³, mean over 16 seeds. Targets (issue 3): T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %.
+// V = 200 m³, mean over 16 seeds. Targets: T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %.
 // They hold for the mean from 1 kHz up (asserted); single realisations scatter about it (rms printed: at
 // 1–8 kHz T20/T30 ≤ 0.9 %, EDT ≤ 1.8 %, C50/C80 0.2–0.45 dB, D50 ≤ 0.024, but Ts 3–6 %: a diffuse Dirac
 // that falls within the direct sound's pulse interferes with it, which energy histograms cannot show;

@@ -4,9 +4,9 @@
 # command to run and stops.
 DIFFRAY_PACKAGES=(build-essential cmake pkg-config libembree-dev libtbb-dev libfftw3-dev libeigen3-dev
   libsndfile1-dev portaudio19-dev libcerf-dev nlohmann-json3-dev libcli11-dev googletest libgtest-dev libbenchmark-dev gnuplot-nox)
-DIFFRAY_PACKAGES+=(libsamplerate0-dev espeak-ng)  # issue 5: resampling in auralize, speech in `diffray signal`
-DIFFRAY_PACKAGES+=(libpng-dev)  # issue 6: PNG output of rendered images
-DIFFRAY_PACKAGES+=(libopenexr-dev)  # issue 6: OpenEXR (float) output of rendered images
+DIFFRAY_PACKAGES+=(libsamplerate0-dev espeak-ng)  # resampling in auralize, speech in `diffray signal`
+DIFFRAY_PACKAGES+=(libpng-dev)  # PNG output of rendered images
+DIFFRAY_PACKAGES+=(libopenexr-dev)  # OpenEXR (float) output of rendered images
 
 diffray_install_deps() {
   local missing=()

@@ -1,5 +1,5 @@
 #pragma once
-// The render-is bench (render_is_bench.cpp; issue 6 item 4): importance-sampled WBSDF shifts against
+// The render-is bench (render_is_bench.cpp): importance-sampled WBSDF shifts against
 // uniform shifts at equal wall time, on the image-double-slit scene (validate/image_setup.h).
 #include <cstdint>
 #include <string>

@@ -1,5 +1,5 @@
 // `diffray door ROOM.json --in DRY.wav -o OUT.wav --close START:END [--steps K] [--diffraction wbsdf|utd|none]`:
-// the sound of a door closing (issue 4/5, item 3). A sliding panel narrows the room's door from open (START)
+// the sound of a door closing. A sliding panel narrows the room's door from open (START)
 // to shut (END); the room is traced at K gaps (door/closing.h), each response is synthesized at the dry
 // signal's sample rate (or at the room's and resampled, when the room's bands reach past the dry signal's
 // Nyquist frequency; the same seed and coherent phasing, ir/synthesis.h, for every step, so that neighbouring

@@ -1,4 +1,4 @@
-// `diffray ir ROOM.json`: a room in, an impulse response and its metrics out (issue 2/5 rooms).
+// `diffray ir ROOM.json`: a room in, an impulse response and its metrics out.
 // Writes OUT.wav (32-bit float, one channel per listener, physical units: Σp² over a span is the energy in
 // J/m², so the direct sound of a 1 W source at 1 m has amplitude 1), OUT.json (the sidecar: metrics per
 // listener from the energy histograms and from the WAV, rays, seed, version, timing, warnings) and OUT.csv

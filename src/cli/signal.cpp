@@ -1,5 +1,5 @@
 // `diffray signal sweep|clicks|speech -o DRY.wav [--rate HZ] [--duration S] [--level DBFS] …`: dry test signals
-// made locally (issue 5, item 4), mono 32-bit float WAV written atomically (audio::WavWriter).
+// made locally, mono 32-bit float WAV written atomically (audio::WavWriter).
 //  * sweep: exponential sine sweep --from … --to Hz (default 20 Hz … 20 kHz) over --duration (default 10 s)
 //    with raised-cosine fades of --fade seconds (dsp/dry_signals.h);
 //  * clicks: a click every --interval seconds from t = 0 (default 0.5 s, 5 s long), each --click-width

@@ -1,4 +1,4 @@
-// Room decay validation cases (issue 2/5 rooms, item 7):
+// Room decay validation cases:
 //   specular-decay:  a shoebox with specular walls (s = 0): the traced energy decay (rays plus image sources,
 //                    as `diffray ir` runs) against the energy-only image-source sum of
 //                    reference/image_lattice.h, complete up to the IR length (order 40 and more), which is

@@ -6,7 +6,7 @@
 //    the rule used for C50/C80 is |error| ≤ max(0.5 % of |value|, 0.005 dB).
 //  * wav: the metrics of impulse responses synthesized from the histogram (ir/synthesis.h, 48 kHz, rounded
 //    to float32 as a WAV stores them), mean over 4 seeds, bands 1–8 kHz. A noise-based IR cannot meet
-//    0.5 % (its metrics scatter like a measurement's), so its target is issue 3's synthesis agreement:
+//    0.5 % (its metrics scatter like a measurement's), so its target is the synthesis agreement the tests hold:
 //    T20/T30/EDT 2 %, C50/C80 0.5 dB, D50 0.02, Ts 3 %. Lower bands are reported in `extra`, not scored.
 //    (Before the synthesis silenced the traced part ahead of its first bin, its band filters rang ahead
 //    of this abrupt start, the onset was found ~1 ms early and Ts read 3.7 % long at T = 0.5 s: a miss

@@ -1,4 +1,4 @@
-// Diffraction validation cases (issue 3/5 diffraction, item 5). Each builds a scene in code from its
+// Diffraction validation cases. Each builds a scene in code from its
 // parameters, runs the three models on it — the WBSDF ray tracer (compare/wbsdf_levels.h), UTD
 // (utd/paths.h) and the exact reference (reference/half_plane_point.h, reference/aperture_point.h, which
 // share no code with either) — and scores the level at each listener, per octave band, in dB re free field:

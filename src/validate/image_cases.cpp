@@ -1,4 +1,4 @@
-// `diffray validate image-double-slit` (issue 6, item 3): the rendered double slit against Fraunhofer.
+// `diffray validate image-double-slit`: the rendered double slit against Fraunhofer.
 // Set-up, oracle and comparison: validate/image_setup.h.
 #include <chrono>
 #include <cmath>

@@ -1,4 +1,4 @@
-// `diffray validate image-cd` (issue 6, item 3): a CD under a monochromatic laser, rendered by the light
+// `diffray validate image-cd`: a CD under a monochromatic laser, rendered by the light
 // tracer (render/light_tracer.h), its first diffraction order found in the image and compared with where
 // the grating equation sends it.
 //

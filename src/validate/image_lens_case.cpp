@@ -1,4 +1,4 @@
-// `diffray validate image-lens-psf` (issue 6, item 2): a thin lens's point-spread function, rendered, against
+// `diffray validate image-lens-psf`: a thin lens's point-spread function, rendered, against
 // the focal-plane Fraunhofer pattern of its rectangular opening. Set-up, oracle and comparison:
 // validate/image_setup.h (LensPsfImageSetup).
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Room validation cases with exact oracles (issue 2/5 rooms, item 7):
+// Room validation cases with exact oracles:
 //   free-field:  listener spheres at several distances from a point source in a fully absorbing room;
 //                fluence against the ball average of e^{−m d}/d², the exact delay, and the fraction of
 //                rays that cross each sphere against (1 − √(1 − R²/r²))/2 (design.md §2).

@@ -1,5 +1,5 @@
 #pragma once
-// Speech made locally with Debian's espeak-ng (issue 5, item 4: dry signals never downloaded). espeak-ng runs
+// Speech made locally with Debian's espeak-ng (dry signals never downloaded). espeak-ng runs
 // as a subprocess (posix_spawnp, no shell: the text goes through a temporary file, never the command line)
 // writing a temporary 22.05 kHz mono WAV, which is read back, resampled to the requested rate
 // (dsp::resample) and scaled so its peak is `amplitude` of full scale. The temporaries live in a private

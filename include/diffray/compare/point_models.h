@@ -1,5 +1,5 @@
 #pragma once
-// The models of a comparison that give a complex pressure at a point (issue 3/5 diffraction): UTD
+// The models of a comparison that give a complex pressure at a point: UTD
 // (utd/paths.h) on the scene's own mesh, and the exact reference that fits the scene, if one does
 // (reference/half_plane_point.h for one free edge or barrier, reference/aperture_point.h for one door or
 // slit in a plane screen). Both return the field of a unit point source relative to its free field at the

@@ -1,5 +1,5 @@
 #pragma once
-// `diffray compare` (issue 3/5 diffraction, item 4): the level at each listener of a scene, relative to the
+// `diffray compare`: the level at each listener of a scene, relative to the
 // free field at the same distance, from each model — the WBSDF ray tracer per band, UTD and the exact
 // reference per band and on a fine frequency grid — with, per listener, its angle past the shadow boundary
 // of the scene's occluder where one is defined. Source 0 of the scene; no air absorption (it would scale

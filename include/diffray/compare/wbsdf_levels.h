@@ -1,5 +1,5 @@
 #pragma once
-// The WBSDF model's side of a comparison (issue 3/5 diffraction): the level at each listener, per band,
+// The WBSDF model's side of a comparison: the level at each listener, per band,
 // relative to the free field of the same source at the same distance, from the room tracer with WBSDF
 // occluders (transport/room_tracer.h, RoomTraceOptions::occluders). Every arrival counts (the steady-state
 // energy), air absorption is left out (it would scale model and reference alike), and each listener's

@@ -1,5 +1,5 @@
 #pragma once
-// The impulse responses of a closing door (issue 4/5, item 3): a sliding panel (door/sliding_panel.h) narrows
+// The impulse responses of a closing door: a sliding panel (door/sliding_panel.h) narrows
 // the door's opening from its full width W to shut while the sound plays; the room is traced at K gaps and
 // the responses are crossfaded in time (dsp/crossfade_convolver.h).
 //  * Schedule: gaps W·2^−k for k = 0 … K−2, then 0 (shut). Halving the gap puts most steps where it narrows to

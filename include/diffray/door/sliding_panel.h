@@ -1,5 +1,5 @@
 #pragma once
-// A door closed part-way by a sliding panel (issue 4/5, the closing door). The panel enters the opening from
+// A door closed part-way by a sliding panel. The panel enters the opening from
 // the jamb toward +ex (the door's frame, room/occluder.h) and covers all of it but a gap of `open_width_m`
 // along ex next to the −ex jamb. The room returned has:
 //  * the door's opening triangles (its mesh group, and its leaf if it had one) replaced by two rectangles in

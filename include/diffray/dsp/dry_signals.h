@@ -1,5 +1,5 @@
 #pragma once
-// Dry test signals made locally (issue 5, item 4): the exponential sine sweep of Farina (AES 108, 2000) and
+// Dry test signals made locally: the exponential sine sweep of Farina (AES 108, 2000) and
 // a click train. Samples are float, peak `amplitude` (linear, 1 = full scale), at `rate_hz`; sample n sits
 // at time t = n / rate_hz. Pure functions; calls may run concurrently.
 //  * Sweep from f1 to f2 over T seconds, L = ln(f2/f1): x(t) = A·w(t)·sin φ(t) with

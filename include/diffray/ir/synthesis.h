@@ -20,7 +20,7 @@
 //    The bands' analysed energies (p_b) exceed what the parts were matched to by 3–10 % from 125 Hz to
 //    2 kHz and fall short by ~7 % at 63 Hz on smooth decays (a band also holds its neighbours' parts in
 //    its crossovers); matching the analysed energies jointly fixed that for octaves but made third-octave
-//    responses' metrics agree worse with the histogram's, and was taken back (2026-11-23).
+//    responses' metrics agree worse with the histogram's, so it is not done.
 //    The traced part is silent before its first bin holding energy (in any band): the zero-phase filters
 //    would ring ahead of an abrupt start (up to a sixth of a low band's energy in a decay that starts at
 //    once), and the onset, time zero of every metric, would be found early. The gains match what is left.

@@ -1,5 +1,5 @@
 #pragma once
-// A pinhole camera whose pixels are finite apertures (issue 6; paper section 2.4: negative WBSDF energy is
+// A pinhole camera whose pixels are finite apertures (paper section 2.4: negative WBSDF energy is
 // physical only once integrated over an aperture). Frame: world metres. forward f = normalize(look_at −
 // position), right r = normalize(f × up), image up u = r × f. A world point p with q = p − position and
 // depth z = q·f > 0 lands on the image plane at distance 1 at (X, Y) = (q·r/z, q·u/z); the plane spans

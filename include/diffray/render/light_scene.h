@@ -1,5 +1,5 @@
 #pragma once
-// A light scene (issue 6, rooms/light/README.md): diffuse rectangles with a (spectral) albedo, WBSDF
+// A light scene (rooms/light/README.md): diffuse rectangles with a (spectral) albedo, WBSDF
 // occluders (slit, double slit, rectangular aperture, reflecting phase grating, thin lens), lights (a point
 // light or a collimated laser beam, each with a spectrum) and a pinhole camera. Units: metres, watts, nanometres for
 // wavelengths; positions and directions in the world frame. Rectangles and occluders are centred on

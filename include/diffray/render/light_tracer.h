@@ -1,5 +1,5 @@
 #pragma once
-// The spectral light tracer (issue 6; paper section "Implementation": photon mapping with signed photons —
+// The spectral light tracer (paper section "Implementation": photon mapping with signed photons —
 // here light tracing, every photon splatted to the camera where it lands on a diffuse surface).
 //
 // Paths. A photon picks a light with probability ∝ power, a wavelength (laser: its line; white: λ from

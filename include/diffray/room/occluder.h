@@ -1,5 +1,5 @@
 #pragma once
-// A WBSDF occluder in a room (issue 3/5 diffraction): a planar rectangle whose microstructure t(x, y) makes
+// A WBSDF occluder in a room: a planar rectangle whose microstructure t(x, y) makes
 // the rays that cross (or, for gratings, meet) it diffract, by the separable Wigner distribution
 // W(x,y,u,v) = W_x(x,u)·W_y(y,v) of its two local axes (design.md §1). Doors and slits are openings in a
 // wall, an edge is the open side of a half-plane (the zone beyond a barrier's free edge), a grating is a

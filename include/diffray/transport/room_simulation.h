@@ -1,5 +1,5 @@
 #pragma once
-// A whole room run (issue 2/5 rooms): the air (ISO 9613-1, room/air.h), the IR length, image sources up to
+// A whole room run: the air (ISO 9613-1, room/air.h), the IR length, image sources up to
 // the room's order for every source–listener pair and rays for the rest (transport/image_sources.h and
 // room_tracer.h, which never count a path twice), summed over the sources into one ir::EnergyResponse per
 // listener. The length is the room file's, or "auto": the time at which the energy in flight in the room

@@ -1,5 +1,5 @@
 #pragma once
-// The acoustic ray tracer (issue 2/5 rooms). A ray leaves a point source in a direction drawn uniformly
+// The acoustic ray tracer. A ray leaves a point source in a direction drawn uniformly
 // on the sphere, weighted by the source's normalised power pattern, and carries one energy per band at
 // once (core::BandArray; with eight bands, Octaves: floats relative to the emitted level). At a surface it is reflected or transmitted with probabilities proportional to
 // the band-mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert (cosine lobe)

@@ -1,5 +1,5 @@
 #pragma once
-// The rendered-image cases (issue 6, item 3): rooms/light/double-slit.json's set-up built in code — a laser
+// The rendered-image cases: rooms/light/double-slit.json's set-up built in code — a laser
 // beam through Young's double slit onto a diffuse wall, seen by the pinhole camera of render/camera.h — and
 // the comparison of the image's central band of rows with the Fraunhofer pattern (reference/fraunhofer.h)
 // averaged over each pixel's solid angle, in absolute radiance (W m⁻² sr⁻¹: ρ/π times the irradiance
