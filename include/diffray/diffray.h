@@ -77,7 +77,9 @@ inline std::vector<ir::BandMetrics> metrics(const audio::AudioBuffer& impulse_re
 /// The whole linear convolution of `dry` with `impulse_response` (dry.frames() + ir.frames() − 1 frames;
 /// channels paired as dsp/multichannel_convolver.h says), in single precision (dsp::PartitionedConvolver:
 /// within 1e-6 of the peak). Throws core::InputError for different sample rates (resample first:
-/// dsp/resample.h), an empty buffer, or a channel pairing the convolver refuses.
+/// dsp/resample.h), an empty buffer, or a channel pairing the convolver refuses. Holds the whole input and
+/// output in memory (for long files, stream them through audio::AudioReader and dsp::MultichannelConvolver
+/// as `diffray auralize` does). Uses every core (processParallel).
 inline audio::AudioBuffer convolve(const audio::AudioBuffer& dry, const audio::AudioBuffer& impulse_response) {
   if (dry.sample_rate_hz != impulse_response.sample_rate_hz)
     throw core::InputError("convolve", "the dry signal and the impulse response have different sample rates");
