@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the built diffray into a temporary prefix and builds tests/install/consumer against the installed
-# tree only, three ways: CMake (find_package, diffray::diffray: the shared library), pkg-config with the
-# shared library, and pkg-config --static with libdiffray.a; each program must run and print the T30s of
-# rooms/shoebox.json. Usage: consumer_test.sh BUILD_DIR SOURCE_DIR. Everything lives in a temporary folder
+# tree only, four ways: CMake (find_package) with diffray::diffray (libdiffray.so) and
+# diffray::diffray_static (libdiffray.a), pkg-config with libdiffray.so and with libdiffray.a; each program
+# must run and print the T30s of rooms/shoebox.json. Usage: consumer_test.sh BUILD_DIR SOURCE_DIR. Everything lives in a temporary folder
 # removed on exit.
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -28,11 +28,13 @@ run() {  # run LABEL PROGRAM: it must succeed and print a finite T30 at 1 kHz
   echo "$label: $(grep '^T30 1000' "$tmp/$label.out")"
 }
 
-# 1. CMake: find_package(diffray CONFIG) from the prefix, and nothing else.
+# 1. CMake: find_package(diffray CONFIG) from the prefix, and nothing else (diffray::diffray and
+# diffray::diffray_static).
 cmake -S "$consumer" -B "$tmp/cmake" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >"$tmp/cmake.log" ||
   { cat "$tmp/cmake.log"; exit 1; }
 cmake --build "$tmp/cmake" >>"$tmp/cmake.log" || { cat "$tmp/cmake.log"; exit 1; }
 run cmake "$tmp/cmake/consumer"
+run cmake-static "$tmp/cmake/consumer_static"
 
 # 2. pkg-config: compile once, link with the shared library, then statically with libdiffray.a.
 export PKG_CONFIG_PATH="$libdir/pkgconfig"
