@@ -389,4 +389,13 @@ expect_clean "wdf slit --count 8"      "out.csv*" "--count: applies to slits onl
 expect_clean "wdf slit --modulation 3" "out.csv*" "--modulation: applies to grating only" wdf slit --modulation 3 "$csv"
 expect_clean "wdf profile --u-range"   "out.csv*" "--u-range: applies to" wdf profile --profile "$tmp/lib/p.csv" --u-range 5 "$csv"
 
+# A mistyped command: one line naming the nearest commands (or none), before CLI11's "a subcommand is required".
+expect_clean "command: near miss" "out.csv*" "diffray irr: no such command; did you mean ir?" irr x
+expect_clean "command: far from any" "out.csv*" "diffray xyzzy: no such command (see diffray --help)" xyzzy
+# --threads above the cores: a note, and the run goes on with the cores (the sidecar says how many).
+"$bin" ir "$rooms/shoebox.json" --threads 100000 --rays 500 -o "$tmp/threads.wav" >/dev/null 2>"$tmp/stderr"
+if [ $? -eq 0 ] && grep -q "^diffray: note: --threads 100000 is more than the [0-9]* cores here: using [0-9]*$" "$tmp/stderr" &&
+   python3 -c "import json,os,sys; sys.exit(0 if json.load(open(sys.argv[1]))['threads'] == len(os.sched_getaffinity(0)) else 1)" "$tmp/threads.json"; then
+  passes=$((passes + 1)); else echo "FAIL: --threads above the cores"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+
 finish cli_bad_input_media

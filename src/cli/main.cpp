@@ -40,6 +40,12 @@ int main(int argc, char** argv) {
   diffray::cli::Runner wave = diffray::cli::addWaveCommand(app, common);
   diffray::cli::requireDecimalFloats(app);
   try {
+    diffray::cli::checkSubcommandName(app, argc, argv);
+  } catch (const diffray::core::InputError& e) {
+    std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << " (see diffray --help)\n";
+    return 2;
+  }
+  try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -51,6 +57,7 @@ int main(int argc, char** argv) {
     std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << " (see diffray --help)\n";
     return 2;
   }
+  diffray::cli::clampThreads(common);
   try {
     if (app.got_subcommand("ir")) return finish(ir());
     if (app.got_subcommand("validate")) return finish(validate());

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 
 #include "diffray/cli/commands.h"
 #include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
 
 namespace diffray::cli {
 
@@ -229,6 +231,54 @@ void checkSynthesis(const room::Room& room, double length_s, double sample_rate_
     throw core::InputError(where + ": output", "an IR of " + std::to_string(longest) + " s at " +
                                                    std::to_string(static_cast<long>(fs)) +
                                                    " Hz is over 2^25 samples; shorten max_length_s/ir_length_s");
+}
+
+std::vector<std::string> nearestNames(const std::string& word, const std::vector<std::string>& names) {
+  // Levenshtein distance by the two-row dynamic programme.
+  const auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      cur[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j)
+        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      std::swap(prev, cur);
+    }
+    return prev[b.size()];
+  };
+  std::vector<std::pair<std::size_t, std::string>> near;
+  for (const std::string& n : names) {
+    const std::size_t d = n.rfind(word, 0) == 0 ? 0 : distance(word, n);
+    if (d <= 2) near.emplace_back(d, n);
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<std::string> out;
+  for (const auto& entry : near) out.push_back(entry.second);
+  return out;
+}
+
+void checkSubcommandName(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc < 2 || argv[1][0] == '-') return;
+  const std::string word = argv[1];
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->get_name() == word) return;
+    names.push_back(sub->get_name());
+  }
+  const std::vector<std::string> near = nearestNames(word, names);
+  std::string hint;
+  for (std::size_t i = 0; i < near.size(); ++i) hint += (i ? " or " : "") + near[i];
+  throw core::InputError("diffray " + core::oneLine(word),
+                         "no such command" + (hint.empty() ? std::string() : "; did you mean " + hint + "?"));
+}
+
+void clampThreads(CommonOptions& common) {
+  const int cores = core::ThreadLimit::current();
+  if (cores > 0 && common.threads > cores) {
+    std::cerr << "diffray: note: --threads " << common.threads << " is more than the " << cores
+              << " cores here: using " << cores << "\n";
+    common.threads = cores;
+  }
 }
 
 }  // namespace diffray::cli

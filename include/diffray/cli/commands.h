@@ -28,6 +28,17 @@ struct CommonOptions {
   bool json = false;
 };
 
+/// The names among `names` nearest to `word` by edit distance (Levenshtein), at most 2 edits away (or those
+/// `word` is a prefix of), best first; empty when none is near.
+std::vector<std::string> nearestNames(const std::string& word, const std::vector<std::string>& names);
+
+/// Before parsing: a first argument that is neither an option nor one of `app`'s subcommands is refused
+/// (core::InputError) naming the nearest commands; CLI11 would say only that a subcommand is required.
+void checkSubcommandName(const CLI::App& app, int argc, const char* const* argv);
+
+/// After parsing: --threads above the cores TBB may use is lowered to them, with a note on stderr.
+void clampThreads(CommonOptions& common);
+
 /// The largest photon or ray count a command accepts.
 inline constexpr double kMaxCount = 1e13;
 /// A count given as a double (2e6 accepted): a whole number in [1, kMaxCount], else core::InputError naming `option`.
