@@ -19,3 +19,13 @@ TEST(CoreOneLine, ControlCharactersBecomeEscapesAndTheRestIsKept) {
 }
 
 }  // namespace
+
+TEST(CoreEditDistance, LevenshteinOfKnownPairs) {
+  // The textbook pairs, counted by hand: kitten → sitting is two substitutions and an insertion.
+  EXPECT_EQ(diffray::core::editDistance("kitten", "sitting"), 3u);
+  EXPECT_EQ(diffray::core::editDistance("", "abc"), 3u);
+  EXPECT_EQ(diffray::core::editDistance("ir", "ir"), 0u);
+  EXPECT_EQ(diffray::core::editDistance("irr", "ir"), 1u);
+  EXPECT_EQ(diffray::core::editDistance("rendr", "render"), 1u);
+  EXPECT_EQ(diffray::core::editDistance("flaw", "lawn"), 2u);
+}

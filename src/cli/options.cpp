@@ -234,21 +234,9 @@ void checkSynthesis(const room::Room& room, double length_s, double sample_rate_
 }
 
 std::vector<std::string> nearestNames(const std::string& word, const std::vector<std::string>& names) {
-  // Levenshtein distance by the two-row dynamic programme.
-  const auto distance = [](const std::string& a, const std::string& b) {
-    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      cur[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j)
-        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      std::swap(prev, cur);
-    }
-    return prev[b.size()];
-  };
   std::vector<std::pair<std::size_t, std::string>> near;
   for (const std::string& n : names) {
-    const std::size_t d = n.rfind(word, 0) == 0 ? 0 : distance(word, n);
+    const std::size_t d = n.rfind(word, 0) == 0 ? 0 : core::editDistance(word, n);
     if (d <= 2) near.emplace_back(d, n);
   }
   std::sort(near.begin(), near.end());

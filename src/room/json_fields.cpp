@@ -12,19 +12,6 @@
 namespace diffray::room {
 namespace {
 
-// Levenshtein distance, to suggest the key a typo was meant to be.
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
 // Follows the parser's events to refuse a key repeated within one object (nlohmann would keep the last
 // one silently) and to name where it is ("materials.m", "geometry[2].box.name").
 class DuplicateKeyCheck {
@@ -167,7 +154,7 @@ void JsonField::allowKeys(std::initializer_list<const char*> allowed) const {
     std::size_t best_d = 3;  // suggest only near misses
     for (const char* a : allowed) {
       if (item.key() == a) known = true;
-      const std::size_t d = editDistance(item.key(), a);
+      const std::size_t d = core::editDistance(item.key(), a);
       if (d < best_d) best_d = d, best = a;
       list += (list.empty() ? "" : ", ") + std::string(a);
     }

@@ -3,6 +3,7 @@
 // one line naming what was wrong, and the CLI prints it and exits non-zero. DIFFRAY_CHECK guards internal
 // invariants (a failure is a bug in diffray, not in the input) and throws InternalError.
 #include <stdexcept>
+#include <cstddef>
 #include <string>
 
 namespace diffray::core {
@@ -10,6 +11,8 @@ namespace diffray::core {
 /// `text` on one line for the terminal: control characters (a newline in a file name, an escape byte from a
 /// file) written as \\n, \\t or \\xNN. For errors and warnings that quote names from the user or a file.
 std::string oneLine(const std::string& text);
+/// The Levenshtein distance between two strings (to suggest what a typo was meant to be).
+std::size_t editDistance(const std::string& a, const std::string& b);
 /// An ASCII control character (below 0x20, or DEL): what oneLine escapes and gnuplot scripts may not hold.
 inline bool isControlCharacter(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
 
