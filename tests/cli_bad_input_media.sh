@@ -17,12 +17,23 @@ printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x44\xac\x00
 expect_auralize_error "missing IR file"        --ir "$tmp/none.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
 expect_auralize_error "missing input file"     --ir "$tmp/ok.wav" --in "$tmp/none.wav" -o "$tmp/wet.wav"
 expect_auralize_error "rate mismatch, --no-resample" --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav" --no-resample
-# Without --no-resample the IR is resampled to the input's rate: one info line, a 44.1 kHz output.
+# Without --no-resample the IR is resampled to the input's rate: one info line, a 44.1 kHz output (and, the
+# click convolved with itself peaking above 1, the clipping warning only).
 if "$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav" >"$tmp/stdout" 2>"$tmp/stderr" &&
    grep -q "resampled the impulse response from 48000 Hz to the input's 44100 Hz" "$tmp/stdout" &&
-   grep -q "at 44100 Hz" "$tmp/stdout" && [ ! -s "$tmp/stderr" ]; then passes=$((passes + 1)); else
+   grep -q "at 44100 Hz" "$tmp/stdout" && ! grep -v "above full scale" "$tmp/stderr" | grep -q .; then passes=$((passes + 1)); else
   echo "FAIL: auralize: a 48 kHz IR on a 44.1 kHz input was not resampled"; sed 's/^/    /' "$tmp/stdout" "$tmp/stderr"; fails=$((fails + 1)); fi
 rm -f "$tmp"/wet.*
+# An output above full scale is written (float WAV holds it) with one warning giving its peak; one below is not warned about.
+"$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain 60 >/dev/null 2>"$tmp/stderr"
+code=$?
+if [ $code -eq 0 ] && [ -s "$tmp/wet.wav" ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] &&
+   grep -q "^diffray: warning: .*wet.wav peaks at +[0-9.]* dBFS, above full scale" "$tmp/stderr"; then
+  passes=$((passes + 1)); else echo "FAIL: auralize: no clipping warning (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+"$bin" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --normalize >/dev/null 2>"$tmp/stderr"
+if [ $? -eq 0 ] && ! grep -q "above full scale" "$tmp/stderr"; then
+  passes=$((passes + 1)); else echo "FAIL: auralize: a clipping warning at -1 dBFS"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp/wet.wav"
 expect_auralize_error "NaN in the input"       --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav"
 expect_auralize_error "NaN in the input, normalized" --ir "$tmp/ok.wav" --in "$tmp/nan.wav" -o "$tmp/wet.wav" --normalize
 expect_auralize_error "NaN in the IR"          --ir "$tmp/nan.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
