@@ -80,6 +80,19 @@ TEST(IrMetrics, ShortDecayLeavesT30Unmeasured) {
   EXPECT_NEAR(m.edt, 1.0, 0.01);
 }
 
+TEST(IrMetrics, ARecordEndingWithinFiftyMillisecondsGivesNoEnergyRatios) {
+  // 10 ms of a 1 s decay (`ir --length 0.01`): nothing after 50 ms to compare with, so D50, C50, C80 and Ts
+  // are not given (D50 read 1 and Ts the record's own centre, 0.5 ms). 300 ms of it: D50 and Ts are.
+  const BandMetrics short_record = metricsFromEnergy(exponentialHistogram(1.0, 1e-3, 0.010), 1e-3);
+  EXPECT_TRUE(std::isnan(short_record.d50));
+  EXPECT_TRUE(std::isnan(short_record.ts));
+  EXPECT_TRUE(std::isnan(short_record.c50));
+  EXPECT_TRUE(std::isnan(short_record.c80));
+  const BandMetrics longer = metricsFromEnergy(exponentialHistogram(1.0, 1e-3, 0.300), 1e-3);
+  EXPECT_TRUE(std::isfinite(longer.d50));
+  EXPECT_TRUE(std::isfinite(longer.ts));
+}
+
 // Noise decays (T = 2 s) cut after 1 s, 30 dB down, with no noise floor: in some bands the decay line
 // meets the last 10 %'s level only past the end, and the Schroeder curve used to plunge at the cut, so that
 // the decay range read 69–99 dB and T30 was reported 11–18 % short. Now the integral is continued past the

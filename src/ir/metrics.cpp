@@ -268,6 +268,9 @@ BandMetrics metricsFromEnergy(const std::vector<double>& energy_per_bin, double 
   // measure where the file starts and ends, not the room (C50 of a 1 s decay under hum read −5.7 or
   // −11.7 dB with or without 100 ms of pre-delay), so none is given.
   if (tr.noise_floor && !(range >= kNoiseMarginDb)) m.c50 = m.c80 = m.d50 = m.ts = kNaN;
+  // A record that ends (untruncated: no tail to extrapolate) within 50 ms of its onset holds no late
+  // energy to compare with: D50 would read 1 and Ts the record's own centre, from no data.
+  if (!tr.truncated && edgeS(static_cast<double>(e.size()), bin_s) - zero_s < 0.050) m.d50 = m.ts = kNaN;
   return m;
 }
 
