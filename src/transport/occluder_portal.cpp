@@ -25,6 +25,9 @@ struct RoomOccluders::AxisLaw {
   double scale(double lambda_m) const { return length / lambda_m; }
   double lo(double lambda_m) const { return (-c_max - c) * scale(lambda_m); }
   double hi(double lambda_m) const { return (c_max - c) * scale(lambda_m); }
+  // The edge kernel's range holds 0 (wbsdf/edge_kernel.h: w_lo ≤ 0 ≤ w_hi).
+  double edgeLo(double lambda_m) const { return std::min(0.0, lo(lambda_m)); }
+  double edgeHi(double lambda_m) const { return std::max(0.0, hi(lambda_m)); }
   /// The target density (what the band's estimate integrates): W's or the far-field pattern's, 0 where
   /// evanescent.
   double target(double cp, double lambda_m) const {
@@ -36,7 +39,7 @@ struct RoomOccluders::AxisLaw {
   double proposal(double cp, double lambda_m) const {
     const double s = scale(lambda_m), w = (cp - c) * s;
     return s * (kind == Kind::Opening ? wbsdf::farFieldPdf(w, lo(lambda_m), hi(lambda_m))
-                                      : wbsdf::edgeKernelPdf(w, std::min(0.0, lo(lambda_m)), std::max(0.0, hi(lambda_m))));
+                                      : wbsdf::edgeKernelPdf(w, edgeLo(lambda_m), edgeHi(lambda_m)));
   }
   /// Draws c' from the band's proposal; false when its range is empty.
   bool sample(double lambda_m, const double* xi, double& cp) const {
@@ -47,7 +50,7 @@ struct RoomOccluders::AxisLaw {
       if (f.weight == 0.0) return false;
       w = f.w;
     } else {
-      w = wbsdf::edgeKernelSample(std::min(0.0, lo(lambda_m)), std::max(0.0, hi(lambda_m)), xi[0], xi[1]).w;
+      w = wbsdf::edgeKernelSample(edgeLo(lambda_m), edgeHi(lambda_m), xi[0], xi[1]).w;
     }
     cp = c + w / s;
     return true;
