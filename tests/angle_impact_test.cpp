@@ -1,7 +1,7 @@
 // The angle-impact WBSDF (wbsdf/angle_impact.h). Oracles written here:
 //  * its u-marginal: ∫ W̃(x₀,u) dx₀ = cosθ·|T(u)|², the z-directed power of each plane wave, with
 //    T(u) = a·sinc(au) for a slit (closed form);
-//  * paraxial limit: for a slit many wavelengths wide, near u = 0 the rows approach design.md's Wigner
+//  * paraxial limit: for a slit many wavelengths wide, near u = 0 the rows approach the slit's Wigner
 //    distribution 2(a − 2|x|)·sinc(2u(a − 2|x|)) averaged over the cell (wbsdf_fixtures.h quadrature);
 //  * traced through the real transport (door-rs, --model angle-impact), the screen matches the
 //    propagating-field oracle of diffray::reference (angular-spectrum quadrature) within 5 chunk standard
@@ -68,7 +68,7 @@ TEST(AngleImpactTable, ApproachesTheWignerDistributionParaxially) {
     const double x1 = L.x0_m + j * L.dx_m;
     for (int k = L.nu / 2 - 20; k < L.nu / 2 + 20; ++k) {
       const double u1 = L.u0_per_m + k * L.du_per_m;
-      // design.md's closed form, x-averaged and u-integrated by the tests' own Gauss–Legendre rule.
+      // The rect's closed-form WDF, x-averaged and u-integrated by the tests' own Gauss–Legendre rule.
       const double wigner =
           diffray::testing::quad(
               [&](double x) {

@@ -1,7 +1,7 @@
 # Shared by the CLI bad-input tests (cli_bad_input.sh, cli_bad_input_media.sh); sourced, not run. A script
 # does `set -u`, then `. "$(dirname "$0")/cli_lib.sh"` with the diffray binary as its own $1, and ends with
 # `finish NAME`. This file gives: bin (absolute), tmp (removed on exit), the counters, expect_clean and
-# expect_error, the ir helpers, and the fixtures both scripts read.
+# expect_error, the ir functions, and the fixtures both scripts read.
 bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"  # absolute: one check runs in another folder
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

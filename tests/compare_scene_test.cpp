@@ -1,7 +1,7 @@
 // `diffray compare`'s core (compare/scene_compare.h, compare/point_models.h): the angle past the shadow
 // boundary against angles worked out by hand from the shipped scenes' geometry; UTD against the exact
 // half-plane on a half-plane scene (UTD with the exact transition function is the half-plane's solution up
-// to the finite panel's other edges, design.md §3); the exact reference's availability; and the door's
+// to the finite panel's other edges); the exact reference's availability; and the door's
 // incoherent-floor reference against |U(P)|² + |U(P')|² built here from reference::aperturePointSource on the
 // unfolded opening (the image principle, in a screen frame of the test's own choosing).
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // ISO 3382-1 metrics against closed forms of an exponential decay p² ∝ e^{−kt}, k = 6·ln10/T:
 // E(t) = e^{−kt}/k, so C_te = 10·log10(e^{k·te} − 1), D50 = 1 − e^{−0.05k}, Ts = 1/k, T20 = T30 = EDT = T;
-// and design.md §2's published values. Plus the noise-floor truncation on a decay in white noise.
+// and those closed forms evaluated by hand to 4–5 digits. Plus the noise-floor truncation on a decay in white noise.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,7 +29,7 @@ std::vector<double> exponentialHistogram(double t60_s, double bin_s, double leng
 
 double clarityDb(double t60_s, double te_s) { return 10.0 * std::log10(std::exp(rate(t60_s) * te_s) - 1.0); }
 
-TEST(IrMetrics, ExponentialDecayMatchesClosedFormsAndDesignValues) {
+TEST(IrMetrics, ExponentialDecayMatchesClosedFormsAndHandValues) {
   for (double t60 : {1.0, 0.5}) {
     SCOPED_TRACE(t60);
     // 1 ms bins: 50 and 80 ms fall on bin edges, where the uniform-in-bin model is exact. Length 2T + 0.5 s
@@ -47,7 +47,7 @@ TEST(IrMetrics, ExponentialDecayMatchesClosedFormsAndDesignValues) {
     EXPECT_NEAR(m.ts, 1.0 / rate(t60), 1.2 * k_bin * k_bin / 12.0 / rate(t60));
     EXPECT_GT(m.decay_range_db, 100.0);
   }
-  // design.md §2, to the digits printed there (±half a unit in the last place).
+  // The closed forms evaluated by hand, to the digits quoted (±half a unit in the last place).
   const BandMetrics one = metricsFromEnergy(exponentialHistogram(1.0, 1e-3, 2.5), 1e-3);
   EXPECT_NEAR(one.c80, 3.0534, 0.5e-4);
   EXPECT_NEAR(one.c50, -0.0206, 0.5e-4);

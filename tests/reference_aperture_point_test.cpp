@@ -1,6 +1,6 @@
-// Tests of the 3D Rayleigh–Sommerfeld point-source aperture reference (reference/aperture_point.h,
-// design.md §3). Oracles independent of its quadrature: a brute-force uniform 8-point rule written here,
-// Fraunhofer's sinc² product (design.md §3), the paraxial Fresnel product with fresnel.h's integrals, the
+// Tests of the 3D Rayleigh–Sommerfeld point-source aperture reference (reference/aperture_point.h).
+// Oracles independent of its quadrature: a brute-force uniform 8-point rule written here,
+// Fraunhofer's sinc² product (Goodman, ch. 4), the paraxial Fresnel product with fresnel.h's integrals, the
 // free field through a huge opening (with the edge-wave ripple bounded by the half-plane asymptotics),
 // the small-opening limit of RS1's (non-)reciprocity, and explicit unfolding for the floor option.
 #include <gtest/gtest.h>
@@ -75,7 +75,7 @@ TEST(AperturePointSource, AgreesWithBruteForceQuadrature) {
 
 TEST(AperturePointSource, FarFieldMatchesFraunhoferSincProduct) {
   // a × b = 0.2 × 0.1 m, λ = 1 cm, source and receiver 10 km away (Fresnel phase k·a²/8·(2/z) = 6e-4 rad).
-  // design.md §3: I = (ab/λz)² sinc²(ax/λz) sinc²(by/λz) for unit incidence; here the incidence is
+  // Fraunhofer (Goodman, ch. 4): I = (ab/λz)² sinc²(ax/λz) sinc²(by/λz) for unit incidence; here the incidence is
   // 1/z_S, and RS1 adds the obliquity cosθ of the receiver direction.
   const double lambda = 0.01, a = 0.2, b = 0.1, zs = 1e4, zr = 1e4;
   const ApertureScreen screen{{{-0.5 * a, 0.5 * a, -0.5 * b, 0.5 * b}}, {}};

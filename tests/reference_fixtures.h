@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for the reference tests, independent of the module: an 8-point Gauss–Legendre panel with the
+// Functions for the reference tests, independent of the module: an 8-point Gauss–Legendre panel with the
 // nodes and weights of Abramowitz & Stegun, table 25.4 (not the module's reference/quadrature.h), and the
 // band level averaged by hand over the midpoint grid that band_grid.h documents.
 #include <cmath>

@@ -1,5 +1,5 @@
-// Tests of the exact point-source half-plane reference (reference/half_plane_point.h, design.md §3). The
-// oracles share nothing with the closed form under test: Sommerfeld's plane-wave solution and design.md's
+// Tests of the exact point-source half-plane reference (reference/half_plane_point.h). The
+// oracles share nothing with the closed form under test: Sommerfeld's plane-wave solution and its
 // check values (the far-source limit), the Helmholtz equation and the boundary conditions by finite
 // differences, geometrical acoustics far from the edge, and the frequency-domain edge-source (BTM)
 // integral of Svensson et al. evaluated by quadrature here.
@@ -91,7 +91,7 @@ TEST(HalfPlanePointSource, FarSourceTendsToSommerfeldPlaneWave) {
     const Complex u = dr::halfPlanePointSource(lambda, source, receiver, rigid) * std::polar(rho0, k * rho0);
     const Complex plane = dr::sommerfeldHalfPlane(lambda, 3.0, degrees(260.0), degrees(60.0), rigid);
     EXPECT_NEAR(std::abs(u - plane), 0.0, 2e-5) << rigid;
-    EXPECT_NEAR(std::abs(u), rigid ? 0.27525 : 0.18061, 1e-5) << "design.md §3 check value, rigid " << rigid;
+    EXPECT_NEAR(std::abs(u), rigid ? 0.27525 : 0.18061, 1e-5) << "Sommerfeld half-plane check value, rigid " << rigid;
   }
   // A sweep across both boundaries, and a receiver off the source's z: the plane wave then travels at
   // elevation, which this limit does not cover, so z stays 0 here.
@@ -256,7 +256,7 @@ TEST(HalfPlanePointSource, RejectsBadInput) {
 }
 
 TEST(HalfPlanePointSource, FarFromTheBoundariesMatchesKellerDiffraction) {
-  // Keller's GTD for a point source, source and receiver in one plane normal to the edge (design.md §3's
+  // Keller's GTD for a point source, source and receiver in one plane normal to the edge (Kouyoumjian–Pathak
   // UTD with the transition function 1): u_d = D·e^{−ik(ρ + ρ0)}/√(ρρ0(ρ + ρ0)),
   // D = −e^{−iπ/4}/(2√(2πk))·[sec((φ − φ0)/2) ± sec((φ + φ0)/2)]. Its error is O(1/(kρ·cos²)) relative to
   // u_d, < 2e-3 at these angles for λ = 1 mm. (The popular Fresnel-integral form with √(k(R1 − R)), exact

@@ -1,6 +1,6 @@
 // Tests of the room-acoustics references (reference/room_acoustics.h, reference/image_lattice.h) against
 // things independent of them: a brute-force recursive mirroring of the source across the six walls,
-// distances worked out by hand, lattice counting, design.md's decay-metric values, hand-computed Sabine
+// distances worked out by hand, lattice counting, decay-metric values evaluated by hand, hand-computed Sabine
 // and Eyring times, numerical quadrature, and the asymptotic density of image sources.
 #include <gtest/gtest.h>
 
@@ -296,8 +296,8 @@ TEST(RoomAcoustics, EyringTendsToSabineForSmallAbsorption) {
   }
 }
 
-TEST(RoomAcoustics, ExponentialDecayMetricsMatchDesign) {
-  // design.md §2 (values quoted to the digits given there).
+TEST(RoomAcoustics, ExponentialDecayMetricsMatchHandValues) {
+  // The closed forms evaluated by hand (values quoted to the digits given).
   const dr::ExponentialDecayMetrics one = dr::exponentialDecayMetrics(1.0);
   EXPECT_NEAR(one.c80_db, 3.0534, 0.5e-4);
   EXPECT_NEAR(one.c50_db, -0.0206, 0.5e-4);

@@ -1,6 +1,6 @@
 // `diffray validate image-cd` at reduced photons: a rendered CD's first order at 550 nm against the
 // grating equation sinθ_1 = sinθ_i + λ/Λ and straight-line geometry (the case's oracle; it shares no code
-// with the tracer). The test also checks the case's oracle itself against the number (θ_1 = 20.1°
+// with the tracer). The test also checks the case's oracle itself against the textbook number (θ_1 = 20.1°
 // at normal incidence) and that the centroid moves with the wavelength as the equation says.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ namespace {
 
 using diffray::testing::runCase;
 
-// The figure: 550 nm on Λ = 1.6 µm at normal incidence leaves at 20.1°, and lands within one
+// The grating equation: 550 nm on Λ = 1.6 µm at normal incidence leaves at 20.1°, and lands within one
 // pixel footprint of H·tan 20.1° on the ceiling 0.2 m above the CD.
 TEST(RenderImageCd, FirstOrderLandsWhereTheGratingEquationSays) {
   const auto r = runCase("image-cd", 300'000);

@@ -1,5 +1,5 @@
 #pragma once
-// Shared oracle helpers of the render tests (tests/render_*_test.cpp). They use only the camera's spec (its
+// Shared oracle functions of the render tests (tests/render_*_test.cpp). They use only the camera's spec (its
 // field of view and pixel counts), never render::Camera, so they share no code with the renderer.
 #include <gtest/gtest.h>
 

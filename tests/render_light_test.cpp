@@ -3,7 +3,7 @@
 //    irradiance E = I cosθ/r² of an isotropic point source, integrated over the pixel by Gauss–Legendre in
 //    image-plane coordinates (dω = dX dY/(1 + X² + Y²)^{3/2});
 //  - Young's double slit under a collimated laser: wall irradiance E(x) = I₀·|T(u)|²·cos³θ/(λL) with the
-//    Fraunhofer transform |T(u)|² = 4a² cos²(πdu) sinc²(au), u = sinθ/λ, θ = atan(x/L) (design.md §3; the
+//    Fraunhofer transform |T(u)|² = 4a² cos²(πdu) sinc²(au), u = sinθ/λ, θ = atan(x/L) (Goodman, ch. 4; the
 //    power per unit u mapped to wall length by du/dx = cos³θ/(λL)), times ρ/π, averaged over each pixel.
 // Tolerances come from each pixel's standard error (chunk-to-chunk scatter, receiver/screen.h), fixed seeds.
 #include <gtest/gtest.h>

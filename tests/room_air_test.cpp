@@ -132,8 +132,8 @@ TEST(AirAbsorption, PressureEntersAsTheStandardSays) {
   EXPECT_NEAR(ratio, 101.325 / 60.0, 1e-6);
 }
 
-TEST(AirAbsorption, SpeedOfSoundIsTheDesignFormula) {
-  // 331.3·√(1 + 20/273.15) = 343.2146 m/s (design.md §2), by hand.
+TEST(AirAbsorption, SpeedOfSoundIsTheLinearFormula) {
+  // 331.3·√(1 + 20/273.15) = 343.2146 m/s, by hand.
   EXPECT_NEAR(diffray::room::speedOfSound(Air{20.0, 50.0, 101.325}), 343.2146, 1e-4);
   EXPECT_NEAR(diffray::room::speedOfSound(Air{0.0, 50.0, 101.325}), 331.3, 1e-12);
 }

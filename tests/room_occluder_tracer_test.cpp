@@ -1,7 +1,7 @@
 // WBSDF occluders in the room tracer (transport/room_occluders.h, transport/room_tracer.h), against oracles
 // that share no code with them:
 // - RoomOccluders::scatter at one hit point: the mean of the signed weight over the propagating outcomes
-//   equals ∫∫ W_x·W_y over the propagating disc (design.md §1, W = 4d·sinc(4du)), by this file's own
+//   equals ∫∫ W_x·W_y over the propagating disc (the rect WDF, W = 4d·sinc(4du)), by this file's own
 //   quadrature, and tends to |t|² = 1 inside the opening as the range grows; no evanescent outcome is drawn
 //   when the propagating range is a whole number of kernel periods; a hit outside the opening passes
 //   (almost) nothing.
@@ -9,7 +9,7 @@
 //   average of 1/r² over the listener, by quadrature), with diffraction on and off.
 // - A 0.9 × 2.1 m door in an absorbing screen: band levels against reference::apertureBandLevelDb (3D
 //   Rayleigh–Sommerfeld, written independently), within the standard error plus the model tolerance of
-//   design.md §4 (the WBSDF matches RS within 0.8–1.2 % of the peak in 2D for a 0.9 m opening).
+//   straight-ray Wigner transport (in 2D it matches RS within 0.8–1.2 % of the peak for a 0.9 m opening).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -345,8 +345,8 @@ TEST(StatRoomOccluderDoor, BandLevelsAgainstRayleighSommerfeld) {
     std::vector<double> rs;
     for (const dr::Listener& l : room.listeners)
       rs.push_back(rsBallRatio(screen, src, l.position_m, l.radius_m, room.bands.lowerHz(b), room.bands.upperHz(b), c));
-    // design.md §4: in 2D the WBSDF matches RS within 0.8–1.2 % of the pattern's peak for a 0.9 m opening;
-    // a door diffracts along both axes (separable W), so 2 × 1.2 % of the peak, the on-axis level.
+    // Model error of straight-ray Wigner transport: in 2D the WBSDF matches RS within 0.8–1.2 % of the pattern's peak
+    // for a 0.9 m opening; a door diffracts along both axes (separable W), so 2 × 1.2 % of the peak, the on-axis level.
     const double model_tol = 2.0 * 0.012 * *std::max_element(rs.begin(), rs.end());
     // OPEN (not asserted): in the bands whose wavelength exceeds the door's width (125, 250 Hz) the WBSDF
     // reads above RS by more than that here (+0.2…+0.5 dB on the axis, +0.8…+1.1 dB in the shadow, several

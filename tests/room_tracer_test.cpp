@@ -1,5 +1,5 @@
 // The acoustic tracer and the image-source method against closed forms: the free-field fluence P·D/r²
-// (design.md §2) with its exact delay and air absorption, a source's power pattern, first-order images of a
+// with its exact delay and air absorption, a source's power pattern, first-order images of a
 // box by hand, and the hybrid (rays + image sources) against rays alone, which must agree in expectation
 // because the tracer leaves out exactly the paths the image sources add. Monte Carlo tolerances are 5σ
 // of the chunk-scatter standard error.

@@ -1,4 +1,4 @@
-// Tests of the transport scene and the signed-energy tracer (design.md §1). Oracles, all written here:
+// Tests of the transport scene and the signed-energy tracer. Oracles, all written here:
 //  * intersection: an analytic ray–rectangle intersection (plane distance + in-rectangle test in local
 //    coordinates) against both back ends (Embree, brute force) built from the same scene;
 //  * energy: exact bookkeeping for a fully open occluder (W = δ(u), every ray weight 1), binomial standard

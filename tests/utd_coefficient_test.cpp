@@ -1,8 +1,10 @@
-// Tests of the UTD transition function and the Kouyoumjian–Pathak wedge coefficient (design.md §3).
+// Tests of the UTD transition function and the Kouyoumjian–Pathak wedge coefficient (Kouyoumjian & Pathak,
+// Proc. IEEE 62(11), 1974).
 // Oracles: F(X) by direct quadrature of its integral written here (no libcerf), its known small- and
 // large-X expansions, and Sommerfeld's exact half-plane solution (reference/fresnel.h, its own Fresnel
 // integrals): for a plane wave on a half-plane UTD with the exact F is the exact solution, so the two agree
-// to rounding, boundaries included. Design.md's check values are tested through the same path.
+// to rounding, boundaries included. The half-plane check values of
+// reference_test.cpp are tested through the same path.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,8 +101,9 @@ TEST(UtdCoefficient, CotTransitionLimitMatchesTheProduct) {
   }
 }
 
-TEST(UtdCoefficient, HalfPlaneDesignCheckValues) {
-  // design.md §3: λ = 1 m, ρ = 3 m, φ0 = 60°, φ = 260° (in the shadow: the field is the diffracted one).
+TEST(UtdCoefficient, HalfPlaneCheckValues) {
+  // Sommerfeld's half-plane evaluated independently to 5 digits: λ = 1 m, ρ = 3 m, φ0 = 60°, φ = 260° (in the shadow:
+  // the field is the diffracted one).
   EXPECT_NEAR(std::abs(utdHalfPlane(1.0, 3.0, degrees(260), degrees(60), true)), 0.27525, 5e-6);
   EXPECT_NEAR(std::abs(utdHalfPlane(1.0, 3.0, degrees(260), degrees(60), false)), 0.18061, 5e-6);
 }

@@ -10,7 +10,7 @@
 // below that.
 // door-rs additionally carries the measured model bias of first-order Wigner transport in the
 // non-paraxial near field (README, "Validation"): it is checked against that documented level, which is
-// above the 1 % target.
+// above the 1 % target.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The diffraction validation cases (src/validate/diffraction_cases.cpp) run end to end through the registry,
 // as `diffray validate` runs them, at reduced rays and a few listeners. Each row's reference is an exact
-// solution sharing no code with the tracer (Macdonald's half-plane, Rayleigh–Sommerfeld over the door,
-// design.md §3); the targets apply per row in the target zones (angle into the shadow ≤ 30°, bands
+// solution sharing no code with the tracer (Macdonald's half-plane, Rayleigh–Sommerfeld over the door);
+// the targets apply per row in the target zones (angle into the shadow ≤ 30°, bands
 // from 250 Hz): 1 dB up to 5° into the shadow, 3 dB up to 30°, each widened by 5 standard errors of the
 // traced level (the Monte Carlo noise at these ray counts; fixed seed).
 #include <gtest/gtest.h>

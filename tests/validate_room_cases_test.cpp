@@ -48,7 +48,7 @@ TEST(ValidateRoom, ShoeboxImagesThroughARoomEdgeCountOnce) {
 }
 
 TEST(StatValidateRoom, SpecularShoeboxDecaysAsTheCompleteImageSum) {
-  // The targets: Schroeder curves within 0.5 dB to -30 dB, T30 within 3 % in every band.
+  // The targets: Schroeder curves within 0.5 dB to -30 dB, T30 within 3 % in every band.
   const auto r = runCase("specular-decay", 300'000);
   EXPECT_TRUE(r.passed) << r.detail;
   EXPECT_LE(r.extra.at("worst_decay_db"), 0.5);
@@ -65,9 +65,9 @@ TEST(StatValidateRoom, DiffuseShoeboxT30IsEyringsWithinEightPercent) {
 }
 
 TEST(ValidateRoom, DecayMetricsMatchTheClosedForms) {
-  // The target: design.md §2's values through the histogram path within 0.5 %; and the
-  // synthesized-WAV path within its agreement target (decay_metrics_case.cpp: T 2 %, C 0.5 dB, D50 0.02,
-  // Ts 3 %; fixed seeds, so the figure is reproducible).
+  // The target: the closed-form values (ISO 3382-1 metrics of a pure exponential decay) through the histogram path
+  // within 0.5 %; and the synthesized-WAV path within its agreement target (decay_metrics_case.cpp: T 2 %, C 0.5 dB,
+  // D50 0.02, Ts 3 %; fixed seeds, so the figure is reproducible).
   const auto r = runCase("decay-metrics", 0);
   EXPECT_LE(r.max_abs_error_rel_peak, 0.005) << r.detail;
   EXPECT_LE(r.extra.at("wav_worst_error_over_target"), 1.0) << r.detail;

@@ -1,6 +1,6 @@
 // Closed-form microstructure WDFs (Openings, PhaseGrating) and their cell integrals, plus the chi-square
 // harness the sampler tests use. Oracles (wbsdf_fixtures.h, chi2.h), sharing no code with diffray:
-//  * design.md §1 closed forms (rect, double slit, half-plane WDFs);
+//  * closed forms (rect, double slit, half-plane WDFs from the WDF definition, Cuypers et al. 2012, eq. 2);
 //  * the numeric pseudo-Wigner of a sampled transmittance (wigner_fft.h, an independent FFT implementation)
 //    with the sampled rect's known Dirichlet-kernel error bound (see tests/wigner_fft_test.cpp);
 //  * brute-force Gauss–Legendre quadrature of the closed forms;
@@ -73,7 +73,7 @@ TEST(Chi2Harness, StatisticAndMerging) {
 
 // ---- Openings: closed-form WDF -----------------------------------------------------------------------------
 
-TEST(OpeningsWdf, SlitMatchesDesignClosedForm) {
+TEST(OpeningsWdf, SlitMatchesRectClosedForm) {
   const double a = 1e-5;
   for (double centre : {0.0, 3.7e-6}) {
     const auto slit = dw::Openings::slit(a, centre);
@@ -87,7 +87,7 @@ TEST(OpeningsWdf, SlitMatchesDesignClosedForm) {
   }
 }
 
-TEST(OpeningsWdf, DoubleSlitMatchesDesignFormulaWithSignedMidAirTerm) {
+TEST(OpeningsWdf, DoubleSlitMatchesClosedFormWithSignedMidAirTerm) {
   const double a = 1e-5, d = 3.5 * a;
   const auto slits = dw::Openings::slits(2, a, d);
   for (int i = 0; i <= 120; ++i) {
@@ -106,7 +106,7 @@ TEST(OpeningsWdf, DoubleSlitMatchesDesignFormulaWithSignedMidAirTerm) {
 
 namespace {
 
-// n slits of width a, centres (j − (n−1)/2)·d: design.md §1's pairwise sum, each pair's signed cross term
+// n slits of width a, centres (j − (n−1)/2)·d: the pairwise sum of cross-Wigner terms, each pair's signed cross term
 // midway between its two slits.
 double manySlitsWdf(double x, double u, double a, double d, int n) {
   double w = 0.0;
@@ -123,9 +123,9 @@ double manySlitsWdf(double x, double u, double a, double d, int n) {
 
 }  // namespace
 
-// N equal slits (design.md §1 generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
+// N equal slits (double slit generalised): W = Σ_j W_r(x − c_j) + Σ_{j<k} 2cos(2πu(c_j − c_k))·W_r(x − c̄_jk),
 // c̄_jk the pair's midpoint. Checks the per-piece pruning of pairs (only pairs placed about x contribute).
-TEST(OpeningsWdf, ManySlitsMatchPairwiseDesignFormula) {
+TEST(OpeningsWdf, ManySlitsMatchPairwiseFormula) {
   const double a = 1e-6, d = 2.3e-6;
   const int n = 9;
   const auto slits = dw::Openings::slits(n, a, d);
@@ -260,7 +260,7 @@ TEST(OpeningsCellMass, HalfPlaneMatchesBruteForceQuadrature) {
 // cellMass cell by cell (the same panels and nodes by direct evaluation: agreement to rounding, 1e-10 of the
 // row's largest cell; cellMass shares the x pieces and pair lags with it) and, on every 23rd cell, against
 // the brute-force quadrature of the closed forms, which shares nothing
-// (tolerance as above). Five slits (the pairwise design formula) on rows straddling kinks, between slits and
+// (tolerance as above). Five slits (the pairwise formula) on rows straddling kinks, between slits and
 // outside, with one panel per cell (600-cell rows: the rotation runs across hundreds of panels and is
 // reseeded every 16) and with 7 (not a divisor of 16: reseeds fall inside cells), and the half-plane (an
 // infinite opening) near its edge, against both oracles too.

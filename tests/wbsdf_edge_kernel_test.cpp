@@ -1,5 +1,5 @@
 // The analytic edge-kernel sampler (wbsdf/edge_kernel.h): a chi-square test against its own pdf, its
-// mean weight against ∫sinc by the test's own quadrature, and the Fraunhofer slit pattern (design.md §3:
+// mean weight against ∫sinc by the test's own quadrature, and the Fraunhofer slit pattern (the second marginal:
 // ∫W dx = |T(u)|² = a²·sinc²(au)) recovered from rays spread over a slit.
 #include <gtest/gtest.h>
 

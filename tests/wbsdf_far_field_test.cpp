@@ -1,7 +1,7 @@
 // The far-field sampler of an opening (wbsdf/far_field.h): a chi-square test against its own pdf, its mean
 // weight per bin against ∫sinc² by the test's own quadrature, and the identity the portal continuation rests
 // on: rays from the far-field law at every point of a slit give, per direction bin, the slit's Wigner
-// distribution integrated over the slit (the closed form of design.md §1, integrated here in x and u).
+// distribution integrated over the slit (its closed form, integrated here in x and u).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,7 +28,7 @@ double sinc2Ref(double w) {
   return s * s;
 }
 
-// The rect aperture's Wigner distribution (design.md §1): W(x,u) = 2(a − 2|x|)·sinc(2u(a − 2|x|)), |x| < a/2.
+// The rect aperture's Wigner distribution: W(x,u) = 2(a − 2|x|)·sinc(2u(a − 2|x|)), |x| < a/2.
 double rectWigner(double a, double x, double u) {
   const double s = a - 2.0 * std::abs(x);
   if (!(s > 0.0)) return 0.0;

@@ -1,7 +1,7 @@
 #pragma once
-// Shared oracles of the WBSDF tests (wbsdf_closed_form_test.cpp, wbsdf_table_test.cpp): design.md §1's
-// closed forms written out independently, Gauss–Legendre quadrature with nodes computed here, and the
-// sine integral. They share no code with diffray.
+// Shared oracles of the WBSDF tests (wbsdf_closed_form_test.cpp, wbsdf_table_test.cpp): the WDF
+// closed forms (from Cuypers et al. 2012, eq. 2) written out independently, Gauss–Legendre quadrature with nodes
+// computed here, and the sine integral. They share no code with diffray.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,18 +21,18 @@ constexpr double kPi = 3.14159265358979323846;
 
 inline double sincOracle(double z) { return z == 0.0 ? 1.0 : std::sin(kPi * z) / (kPi * z); }
 
-/// design.md §1: rect of width a centred on 0, W = 2(a − 2|x|)·sinc(2u(a − 2|x|)) for |x| < a/2.
+/// Rect of width a centred on 0, W = 2(a − 2|x|)·sinc(2u(a − 2|x|)) for |x| < a/2.
 inline double rectWdf(double x, double u, double a) {
   const double l = a - 2.0 * std::abs(x);
   return l > 0.0 ? 2.0 * l * sincOracle(2.0 * u * l) : 0.0;
 }
 
-/// design.md §1: double slit of width a, centres ±d/2: W_r(x−d/2) + W_r(x+d/2) + 2cos(2πud)·W_r(x).
+/// Double slit of width a, centres ±d/2: W_r(x−d/2) + W_r(x+d/2) + 2cos(2πud)·W_r(x).
 inline double doubleSlitWdf(double x, double u, double a, double d) {
   return rectWdf(x - 0.5 * d, u, a) + rectWdf(x + 0.5 * d, u, a) + 2.0 * std::cos(2.0 * kPi * u * d) * rectWdf(x, u, a);
 }
 
-/// design.md §4: the step (half-plane x ≥ 0 open) has W = sin(4πux)/(πu) for x > 0 (4x at u = 0).
+/// The step (half-plane x ≥ 0 open) has W = sin(4πux)/(πu) for x > 0 (4x at u = 0).
 inline double halfPlaneWdf(double x, double u) {
   if (x <= 0.0) return 0.0;
   return u == 0.0 ? 4.0 * x : std::sin(4.0 * kPi * u * x) / (kPi * u);

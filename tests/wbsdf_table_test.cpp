@@ -325,8 +325,8 @@ TEST(StatWbsdfSampler, GratingSamplesLineCentres) {
 
 
 // The rough surface's table (rough_surface.h): its second moment in u against the closed form from the
-// correlation function, ∫u²W du = −γ''(0)/(4π²) = g/(2π²ℓ²) for γ(x') = exp(−g(1 − e^{−x'²/ℓ²})) (design.md
-// §1, paper eq:WDF_gamma); total mass 1. Tolerance: the cell-centre quadrature error du²/12 per unit mass
+// correlation function, ∫u²W du = −γ''(0)/(4π²) = g/(2π²ℓ²) for γ(x') = exp(−g(1 − e^{−x'²/ℓ²})) (Cuypers
+// et al. 2012, eq:WDF_gamma); total mass 1. Tolerance: the cell-centre quadrature error du²/12 per unit mass
 // plus 1e-3 relative for the lobe beyond the tabulated range (Gaussian tails, far below that here).
 TEST(WbsdfTableRough, SecondMomentMatchesCorrelationCurvature) {
   const double lambda = 0.5e-6, sigma_h = 0.2e-6, ell = 4e-6;

@@ -1,6 +1,7 @@
 // Tests of the numeric Wigner distribution (wigner_fft), profile CSV input and the rough-surface WBSDF.
 // Every oracle here is independent of the implementation: direct O(N²) sums instead of FFTW, closed forms
-// (design.md §1), and the closed-form series of the Gaussian rough surface derived below.
+// (the rect's WDF from Cuypers et al. 2012, eq. 2), and the closed-form series of the Gaussian rough surface derived
+// below.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,7 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 double sincOracle(double z) { return z == 0.0 ? 1.0 : std::sin(kPi * z) / (kPi * z); }
 
-/// Closed-form WDF of a rect of width a centred on 0 (design.md §1).
+/// Closed-form WDF of a rect of width a centred on 0: W = 2(a − 2|x|)·sinc(2u(a − 2|x|)), |x| < a/2.
 double rectWdf(double x, double u, double a) {
   const double l = a - 2.0 * std::abs(x);
   return l > 0.0 ? 2.0 * l * sincOracle(2.0 * u * l) : 0.0;

@@ -6,7 +6,7 @@
 // module function with the room file's own settings filled in; the module headers named at each call hold
 // the full contract (options, conventions, the physics). These functions are kept stable across releases;
 // the module headers may change.
-// Units: seconds, metres, Hz; energies in J/m² (Σ p[n]² over a span is its energy, design.md §2).
+// Units: seconds, metres, Hz; energies in J/m² (Σ p[n]² over a span is its energy).
 // Errors: bad input (a missing or malformed scene file, a listener index out of range, mismatched sample
 // rates) throws core::InputError with a one-line message; core::InternalError means a bug in diffray.
 // Thread-safety: free functions without shared state; calls on different data may run concurrently, and

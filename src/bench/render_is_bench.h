@@ -12,7 +12,7 @@ namespace diffray::bench {
 /// and (error_uniform/error_is)², the factor in photons (or time) uniform needs for IS's error.
 void benchRenderIs(std::uint64_t photons_is);
 
-/// The same comparison on a scene file (rooms/light/cd.json: the CD), which has no closed form: the
+/// The same comparison on a scene file (rooms/light/cd.json: a CD, Λ = 1.6 µm), which has no closed form: the
 /// reference is an importance-sampled render of 8 × photons_is photons with another seed, and the errors
 /// are RMS and max over every pixel's X, Y, Z against it, as fractions of the reference's peak. The
 /// reference's own noise (1/√8 of the IS run's) inflates both errors a little: error_is by about 6 %.

@@ -41,8 +41,9 @@ struct IrOptions {
   bool portal = true;
 };
 
-// Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (design.md §1:
-// report it rather than clamp it silently; the synthesis reads negative bins as silence).
+// Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (negative energy is
+// physical only after integration over a finite aperture, Cuypers et al. 2012, section 2.4: report it rather than clamp
+// it silently; the synthesis reads negative bins as silence).
 double negativeFraction(const std::vector<std::vector<double>>& traced) {
   double neg = 0.0, all = 0.0;
   for (const auto& band : traced)

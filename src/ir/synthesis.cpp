@@ -15,7 +15,7 @@ namespace diffray::ir {
 
 namespace {
 
-constexpr double kMaxDiracRate = 1e4;  // s⁻¹, design.md §2
+constexpr double kMaxDiracRate = 1e4;  // s⁻¹, the cap on the reflection density 4πc³t²/V
 // Streams of the seed: one for the Dirac times and signs, one for the Diracs added to empty bins.
 constexpr std::uint64_t kStreamPoisson = 0, kStreamFill = 1;
 // The window over which a band's energy is matched to the histogram: this many cycles of its bandwidth

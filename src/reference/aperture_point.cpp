@@ -1,5 +1,6 @@
 // 3D Rayleigh–Sommerfeld (first kind) reference for a point source behind rectangular openings, by
-// composite Gauss–Legendre quadrature (design.md §3; the header has the formula, frame and grid rules).
+// composite Gauss–Legendre quadrature (Goodman, "Introduction to Fourier Optics", ch. 3; the header has the formula,
+// frame and grid rules).
 #include "diffray/reference/aperture_point.h"
 
 #include <algorithm>

@@ -1,4 +1,5 @@
-// Fraunhofer references (design.md §1, §3). Self-contained: no code shared with the ray tracer.
+// Fraunhofer references (Goodman, "Introduction to Fourier Optics", ch. 4). Self-contained: no code shared with the ray
+// tracer.
 #include "diffray/reference/fraunhofer.h"
 
 #include <cmath>

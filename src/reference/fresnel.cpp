@@ -1,5 +1,5 @@
-// Fresnel integrals, the Fresnel slit and Sommerfeld's half-plane (design.md §3). Self-contained: no code
-// shared with the ray tracer.
+// Fresnel integrals, the Fresnel slit and Sommerfeld's half-plane (Goodman, "Introduction to Fourier Optics", ch. 4;
+// Born & Wolf, "Principles of Optics", §11.5). Self-contained: no code shared with the ray tracer.
 #include "diffray/reference/fresnel.h"
 
 #include <cmath>

@@ -1,5 +1,5 @@
-// Macdonald's exact point-source solution for the thin half-plane (design.md §3; see the header for the
-// frame and the formula). Self-contained apart from the module's Gauss rule and core/error.h.
+// Macdonald's exact point-source solution for the thin half-plane (see the header for the
+// source, the frame and the formula). Self-contained apart from the module's Gauss rule and core/error.h.
 #include "diffray/reference/half_plane_point.h"
 
 #include <algorithm>

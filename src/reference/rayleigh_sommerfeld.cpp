@@ -1,5 +1,5 @@
-// 2D Rayleigh–Sommerfeld reference by direct quadrature (design.md §3). Self-contained: its own
-// Gauss–Legendre rule, no code shared with the ray tracer.
+// 2D Rayleigh–Sommerfeld reference by direct quadrature (Goodman, "Introduction to Fourier Optics", ch. 3).
+// Self-contained: its own Gauss–Legendre rule, no code shared with the ray tracer.
 #include "diffray/reference/rayleigh_sommerfeld.h"
 #include "diffray/reference/quadrature.h"
 

@@ -1,4 +1,5 @@
-// Closed-form room-acoustics references (design.md §2). Self-contained: no code shared with the tracer.
+// Closed-form room-acoustics references (Kuttruff, "Room Acoustics"; ISO 3382-1). Self-contained: no code shared with
+// the tracer.
 #include "diffray/reference/room_acoustics.h"
 
 #include <cmath>
@@ -10,7 +11,7 @@
 namespace diffray::reference {
 namespace {
 
-constexpr double kDesignConstant = 0.161;  // design.md's Sabine/Eyring constant, s/m
+constexpr double kClassicConstant = 0.161;  // the textbook Sabine/Eyring constant (24 ln10 / c at c ≈ 343 m/s), s/m
 constexpr double kPi = 3.14159265358979323846;
 
 void requireNonNegative(const std::string& where, double value) {
@@ -51,12 +52,12 @@ double sabineT(double volume_m3, double absorption_area_m2, double air_m_per_m) 
   core::requirePositive("sabineT: volume_m3", volume_m3);
   requireNonNegative("sabineT: absorption_area_m2", absorption_area_m2);
   requireNonNegative("sabineT: air_m_per_m", air_m_per_m);
-  return reverberationTime("sabineT", kDesignConstant, volume_m3, absorption_area_m2, air_m_per_m);
+  return reverberationTime("sabineT", kClassicConstant, volume_m3, absorption_area_m2, air_m_per_m);
 }
 
 double sabineT(double volume_m3, double absorption_area_m2, double air_m_per_m, double c_m_s) {
   core::requirePositive("sabineT: c_m_s", c_m_s);
-  return sabineT(volume_m3, absorption_area_m2, air_m_per_m) * (kSixtyDbConstant / c_m_s) / kDesignConstant;
+  return sabineT(volume_m3, absorption_area_m2, air_m_per_m) * (kSixtyDbConstant / c_m_s) / kClassicConstant;
 }
 
 double eyringT(double volume_m3, double surface_m2, double mean_alpha, double air_m_per_m) {
@@ -64,12 +65,12 @@ double eyringT(double volume_m3, double surface_m2, double mean_alpha, double ai
   requireNonNegative("eyringT: air_m_per_m", air_m_per_m);
   const double area = eyringArea(surface_m2, mean_alpha);
   if (std::isinf(area)) return 0.0;  // ᾱ = 1: nothing comes back
-  return reverberationTime("eyringT", kDesignConstant, volume_m3, area, air_m_per_m);
+  return reverberationTime("eyringT", kClassicConstant, volume_m3, area, air_m_per_m);
 }
 
 double eyringT(double volume_m3, double surface_m2, double mean_alpha, double air_m_per_m, double c_m_s) {
   core::requirePositive("eyringT: c_m_s", c_m_s);
-  return eyringT(volume_m3, surface_m2, mean_alpha, air_m_per_m) * (kSixtyDbConstant / c_m_s) / kDesignConstant;
+  return eyringT(volume_m3, surface_m2, mean_alpha, air_m_per_m) * (kSixtyDbConstant / c_m_s) / kClassicConstant;
 }
 
 double sphereHitFraction(double radius_m, double distance_m) {

@@ -144,7 +144,7 @@ class PathTracer {
         return;
       }
       const transport::Scene::ObjectRef& obj = ps_.scene.object(hit.object);
-      // The hit point in double from the object's plane (design.md §1: microns matter on an occluder).
+      // The hit point in double from the object's plane (microns matter on an occluder: Embree's float is not enough).
       const double dn = ph.d.dot(obj.frame.n);
       double t = (obj.origin_n - ph.o.dot(obj.frame.n)) / dn;
       if (!(std::isfinite(t) && t > 0)) t = hit.t;

@@ -1,4 +1,4 @@
-// Atmospheric absorption per ISO 9613-1:1993 (design.md §2). Symbols as in the standard.
+// Atmospheric absorption per ISO 9613-1:1993. Symbols as in the standard.
 #include "diffray/room/air.h"
 
 #include <cmath>

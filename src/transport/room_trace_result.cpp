@@ -1,4 +1,4 @@
-// RoomTraceResult's merge and the tracer's sizing and emission helpers (declared in room_tracer.h), apart
+// RoomTraceResult's merge and the tracer's sizing and emission functions (declared in room_tracer.h), apart
 // from the bounce loop in room_tracer.cpp.
 #include <algorithm>
 #include <cmath>

@@ -107,7 +107,7 @@ bool followHit(const Scene& scene, int object, float t_embree, core::ChunkSample
     return false;
   }
   const Scene::ObjectRef& obj = scene.object(object);
-  // Refine Embree's float distance on the object's plane, in double (design.md §1).
+  // Refine Embree's float distance on the object's plane, in double (a WBSDF is indexed at micron scale).
   const double dn = dot(s.d, obj.frame.n);
   double t = (obj.origin_n - dot(s.o, obj.frame.n)) / dn;
   if (!(std::isfinite(t) && t > 0)) t = t_embree;
@@ -149,7 +149,7 @@ ScatterFate scatterAtOccluder(const Occluder& occ, const geometry::Frame& f, dou
     v_shift = sy.u_shift;
   }
   if (weight == 0.0) return ScatterFate::Absorbed;
-  // Direction cosines are λ·u (design.md §1); an imaginary γ is an evanescent wave: the ray ends.
+  // Direction cosines are λ·u (Cuypers et al. 2012, eq. 8–10); an imaginary γ is an evanescent wave: the ray ends.
   double alpha_o = alpha + wavelength_m * sx.u_shift;
   double beta_o = beta + wavelength_m * v_shift;
   if (occ.focal_length_m > 0.0) {  // a thin lens: the sheared WDF (scene.h, Occluder::focal_length_m)

@@ -1,5 +1,5 @@
 // The aperture cases of `diffray validate`: slits, double slit, rectangle, Fresnel slit and a door.
-// Each compares the traced screen with an oracle from diffray::reference (design.md §3).
+// Each compares the traced screen with an oracle from diffray::reference.
 #include <charconv>
 #include <chrono>
 #include <cmath>

@@ -1,6 +1,6 @@
 // `diffray validate decay-metrics`: ISO 3382-1 metrics of synthetic exponential decays p² ∝ e^{−kt},
 // k = 6·ln10/T, against their closed forms (T20 = T30 = EDT = T, C_te = 10·log10(e^{k·te} − 1),
-// D50 = 1 − e^{−0.05k}, Ts = 1/k; design.md §2 prints them for T = 1 and 0.5 s), by two paths:
+// D50 = 1 − e^{−0.05k}, Ts = 1/k; T = 1 s gives C80 = 3.0534 dB, D50 = 0.49881), by two paths:
 //  * hist: the metrics of the 1 ms energy histogram (ir/metrics.h). Target: within 0.5 %, except C50 at
 //    T = 1 s (−0.0206 dB, near zero, where a relative error means nothing): there |error| ≤ 0.005 dB;
 //    the rule used for C50/C80 is |error| ≤ max(0.5 % of |value|, 0.005 dB).

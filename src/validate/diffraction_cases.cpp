@@ -8,7 +8,7 @@
 //               the wall and heights relative to its top edge, against the same solution;
 //   door-room:  a door on a rigid floor in a black partition between two rooms, listeners behind it from
 //               in view to hidden behind a jamb, against Rayleigh–Sommerfeld over the opening (+ floor image).
-// Targets (issue): WBSDF within 1 dB of the exact reference in the lit and transition zones (angle into the
+// Targets: WBSDF within 1 dB of the exact reference in the lit and transition zones (angle into the
 // shadow ≤ `transition` degrees) and within 3 dB up to 30° into the shadow, in the bands from `target-from`
 // Hz (250 Hz) up; UTD is scored the same way and reported, not required.
 #include <algorithm>

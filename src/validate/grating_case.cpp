@@ -1,5 +1,5 @@
 // `diffray validate grating-orders`: a sinusoidal phase grating under a plane wave; the energy in each
-// diffraction order against J_q(m/2)² (paper eq. for the sinusoidal grating; design.md §1), and the
+// diffraction order against J_q(m/2)² (Cuypers et al. 2012, eq. 14–15), and the
 // orders' directions against the grating equation sinθ_q = qλ/Λ.
 #include <chrono>
 #include <cmath>

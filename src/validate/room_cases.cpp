@@ -1,7 +1,7 @@
 // Room validation cases with exact oracles:
 //   free-field:  listener spheres at several distances from a point source in a fully absorbing room;
 //                fluence against the ball average of e^{−m d}/d², the exact delay, and the fraction of
-//                rays that cross each sphere against (1 − √(1 − R²/r²))/2 (design.md §2).
+//                rays that cross each sphere against (1 − √(1 − R²/r²))/2 (the sphere's solid angle over 4π).
 //   shoebox-ism: the image sources of transport/image_sources.h (general rooms, validated by tracing)
 //                against the closed-form image lattice of reference/image_lattice.h: every arrival's delay
 //                and per-band energy.

@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 //   ∫ 1[x+s/2 ∈ j] 1[x−s/2 ∈ k] e^{−i2πus} ds = ∫_{s_lo}^{s_hi} e^{−i2πus} ds,
 //   s_lo = max(2(p_j−x), 2(x−q_k)),  s_hi = min(2(q_j−x), 2(x−p_k)),
 // and the (j,k) + (k,j) pair sums to a real L·cos(2πu s_c)·sinc(uL) per ordered pair, with
-// L = s_hi − s_lo > 0 and s_c = (s_lo + s_hi)/2. A single slit gives design.md's 2w·sinc(2uw), w = a−2|x|.
+// L = s_hi − s_lo > 0 and s_c = (s_lo + s_hi)/2. A single slit gives the rect's closed form 2w·sinc(2uw), w = a−2|x|.
 // Both s-limits are piecewise linear in x with slopes ±2, so between breakpoints the x-average over a
 // piece of width Δ is exactly the midpoint value times sinc(2uΔ): this is what cellMass uses.
 // ---------------------------------------------------------------------------------------------------

@@ -95,7 +95,7 @@ std::shared_ptr<const WbsdfTable> WbsdfTable::build(const Microstructure& m, con
     m.rowMasses(x1, x2, L.u0_per_m, L.du_per_m, L.nu, row);
     double sum = 0.0;
     for (int k = 0; k < L.nu; ++k) sum += row[k];
-    // Σ_u W = |t|² (the u-marginal, design.md §1): what the row misses lies outside the u range.
+    // Σ_u W = |t|² (the Wigner distribution's u-marginal): what the row misses lies outside the u range.
     double t2 = 0.0;
     const int probes = 16;
     for (int p = 0; p < probes; ++p) t2 += std::norm(m.transmittance(x1 + (p + 0.5) * L.dx_m / probes));

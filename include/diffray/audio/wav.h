@@ -1,6 +1,6 @@
 #pragma once
-// Audio file I/O through libsndfile. An AudioBuffer holds interleaved samples in double, on the convention
-// of design.md §2 that Σ p[n]² over a span is the energy (J/m²) of that span: no normalisation is applied,
+// Audio file I/O through libsndfile. An AudioBuffer holds interleaved samples in double, on diffray's convention
+// that Σ p[n]² over a span is the energy (J/m²) of that span: no normalisation is applied,
 // so a float WAV round-trips bit-exactly (float → double → float). Reading accepts anything libsndfile
 // reads (WAV, AIFF, FLAC, …; integer formats are scaled to [−1, 1) as libsndfile does). Writing produces
 // 32-bit float WAV, atomically (core::writeFileAtomically): a failed write leaves no file and leaves an

@@ -1,5 +1,5 @@
 #pragma once
-// Frequency bands (design.md §2): octave bands 63 Hz–8 kHz by default, third-octave bands as an option.
+// Frequency bands: octave bands 63 Hz–8 kHz by default, third-octave bands as an option.
 // Centres are the exact base-10 ones of IEC 61260-1 (1000·10^(3k/10) for third octaves, every third of
 // them for octaves) and band edges are centre·10^(±0.15) (octave) or 10^(±0.05) (third octave); labels and
 // JSON keys use the nominal values ("63", "125", …, "8000"). A ray carries one energy per band at once in

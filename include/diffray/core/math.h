@@ -1,6 +1,6 @@
 #pragma once
-// Small math helpers and constants shared by every module. Vectors are Eigen's double vectors; all
-// geometry in diffray is computed in double (Embree's float hits are refined in double, design.md §1).
+// Small math functions and constants shared by every module. Vectors are Eigen's double vectors; all
+// geometry in diffray is computed in double (Embree's float hits are refined in double).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -14,14 +14,14 @@ using Vec2 = Eigen::Vector2d;
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kTwoPi = 2.0 * kPi;
 
-/// Normalised sinc: sin(pi z)/(pi z), 1 at z = 0 (design.md §1).
+/// Normalised sinc: sin(pi z)/(pi z), 1 at z = 0.
 inline double sinc(double z) {
   const double pz = kPi * z;
   if (std::abs(pz) < 1e-4) return 1.0 - pz * pz / 6.0;
   return std::sin(pz) / pz;
 }
 
-/// Speed of sound in air at temperature `celsius` (design.md §2): 331.3·sqrt(1 + T/273.15) m/s.
+/// Speed of sound in air at temperature `celsius`: 331.3·sqrt(1 + T/273.15) m/s (ideal gas, c ∝ √T_abs).
 inline double speedOfSound(double celsius = 20.0) { return 331.3 * std::sqrt(1.0 + celsius / 273.15); }
 
 /// Gauss–Legendre rule on [-1, 1] with n nodes, computed by Golub–Welsch with Eigen's symmetric

@@ -2,7 +2,7 @@
 // The Embree 3 back end: an RAII device and scene built once from a Mesh (one triangle geometry).
 // intersect() calls rtcIntersect1 with an RTCIntersectContext, intersectPacket() Embree's 16- or 8-wide
 // packets; both are thread-safe. Embree works in float: callers that need more than ~1e-7 relative precision
-// (every WBSDF hit does, design.md §1) recompute the hit point in double from the object's plane. Errors
+// (every WBSDF hit does) recompute the hit point in double from the object's plane. Errors
 // reported by Embree's callback become InternalError.
 #include <embree3/rtcore.h>
 

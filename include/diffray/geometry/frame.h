@@ -1,7 +1,7 @@
 #pragma once
 // A planar object's local frame: origin, two in-plane unit axes ex, ey and the normal n = ex × ey (world
 // frame, metres, double precision). Local coordinates of a hit, (p − origin)·ex and ·ey, are what a WBSDF
-// is indexed by, so the tracer computes them in double from the ray (design.md §1), never from Embree's
+// is indexed by, so the tracer computes them in double from the ray, never from Embree's
 // float hit. Plain value type.
 #include "diffray/core/math.h"
 

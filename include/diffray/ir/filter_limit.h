@@ -5,7 +5,7 @@
 // Contract. A band filter smears an impulse response over its own ringing (BandFilter::ringSamples): a
 // zero-phase filter both ahead of and after each sample. A short decay is read long and its early energy
 // spread late (a Dirac reads EDT 0.35 s and C50 31 dB in the 63 Hz octave). The model: the energy envelope
-// of an exponential decay that falls 60 dB in T (design.md §2's convention that Σ p² over a span is its
+// of an exponential decay that falls 60 dB in T (diffray's convention that Σ p² over a span is its
 // energy), convolved with the band filter's squared impulse response h_b² (the expected band energy of
 // diffuse, noise-like decay with that envelope), measured by metricsFromEnergy from the decay's start:
 // modelReading(T). trueValue(T) is the same figure of the exponential itself (closed forms: T; C_te =

@@ -1,8 +1,8 @@
 #pragma once
-// Room-acoustic metrics per band after ISO 3382-1 (design.md §2), from an energy histogram or from a
+// Room-acoustic metrics per band after ISO 3382-1, from an energy histogram or from a
 // sampled impulse response, by one rule for both so that the two can be compared.
 //
-// Contract. Energies are in J/m² per bin (for a signal, p[n]² per sample: design.md's convention that
+// Contract. Energies are in J/m² per bin (for a signal, p[n]² per sample: diffray's convention that
 // Σ p² over a span is its energy). Inside a bin energy is taken as uniform in time. Time zero is the
 // onset: the start of the first bin whose energy exceeds max·10^(−20/10) (ISO 3382-1 A.3.4). The noise
 // floor of measured responses is found by Lundeby et al.'s iterative method (1995; ISO 3382-1 §5.3.3,

@@ -1,5 +1,6 @@
 #pragma once
-// Impulse response synthesis from an EnergyResponse (design.md §2, "IR synthesis").
+// Impulse response synthesis from an EnergyResponse (a Poisson Dirac sequence of rate min(4πc³t²/V, 10⁴ s⁻¹), the
+// reflection density of Kuttruff, "Room Acoustics", with random signs, weighted per band by √E_band).
 //
 // Contract. The output p (sample 0 at emission, sample_rate_hz) follows the convention that Σ p_b[n]² over
 // a span is the energy (J/m²) of that span in band b, p_b being band b of p (BandFilter::split, as the
@@ -10,7 +11,7 @@
 //    gains start at √(E_b(bin)/Diracs in its bin) and are corrected (six rounds, each a new filtering
 //    of the weighted Diracs) until the band part's Σ² over a window of w_b bins around each bin equals the
 //    histogram's energy over that window; w_b spans 2 cycles of the band's bandwidth (w = 1, i.e. bin by
-//    bin as design.md describes, for bands wider than 2/bin_s: 4 and 8 kHz octaves at 1 ms). Why not bin
+//    bin as the classic method does, for bands wider than 2/bin_s: 4 and 8 kHz octaves at 1 ms). Why not bin
 //    by bin everywhere: a band of bandwidth B cannot hold an envelope finer than ~1/B. Why gains on the
 //    Diracs rather than on the filtered signal: the band part stays inside its filter's pass band, so no
 //    energy is modulated into the neighbouring bands (synthesis.cpp). The part's energy per window matches

@@ -3,9 +3,9 @@
 // on through it. Each ray segment deposits its signed energy times the length of the segment's chord
 // inside the sphere over the mean chord 4R/3 (a track-length estimator). For rays that cross the whole
 // sphere this has the mean of counting each crossing once, so energy / πR² estimates the intensity
-// (design.md §2: a sphere of radius R at distance r from a point source is hit by the fraction
-// (1 − √(1 − R²/r²))/2 of the rays); unlike counting, it stays right when a ray starts, ends or scatters
-// inside the sphere. As a finite aperture it integrates negative ray energies out (paper section 2.4).
+// (a sphere of radius R at distance r from a point source is hit by the fraction
+// (1 − √(1 − R²/r²))/2 of the rays, its solid angle over 4π); unlike counting, it stays right when a ray starts, ends
+// or scatters inside the sphere. As a finite aperture it integrates negative ray energies out (paper section 2.4).
 // Immutable; thread-safe.
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 #pragma once
-// Non-paraxial 3D aperture reference (design.md §3): the Rayleigh–Sommerfeld integral of the first kind
-// for a POINT source in front of an opaque, infinitely thin plane screen with rectangular openings, with
-// Kirchhoff boundary values (the free field of the source in the openings, zero on the screen):
+// Non-paraxial 3D aperture reference (Goodman, "Introduction to Fourier Optics", ch. 3): the Rayleigh–Sommerfeld
+// integral of the first kind for a POINT source in front of an opaque, infinitely thin plane screen with rectangular
+// openings, with Kirchhoff boundary values (the free field of the source in the openings, zero on the screen):
 //   U(P) = ∫_openings U_src(q)·(1/2π)(z_P/r)(1/r + ik)(e^{−ikr}/r) dA,   U_src(q) = e^{−ik·r_s}/r_s,
-// r = |P − q|, r_s = |S − q|, time factor e^{+iωt} (design.md §3). Normalised like half_plane_point.h: the
+// r = |P − q|, r_s = |S − q|, time factor e^{+iωt}. Normalised like half_plane_point.h: the
 // free field of the source is e^{−ikR}/R, and an opening much larger than the first Fresnel zone gives
 // U ≈ e^{−ikR}/R up to the edge-wave ripple (exactly so for the whole plane).
 //

@@ -1,11 +1,11 @@
 #pragma once
-// Fraunhofer (far-field) references of design.md §1 and §3: exact Fourier transforms T(u) of simple
-// transmittances t(x), returned as |T(u)|², plus the conversion from |T|² to intensity on a flat screen.
+// Fraunhofer (far-field) references (Goodman, "Introduction to Fourier Optics", ch. 4): exact Fourier transforms T(u)
+// of simple transmittances t(x), returned as |T(u)|², plus the conversion from |T|² to intensity on a flat screen.
 //
 // Contract: these are ORACLES for the tests and for `diffray validate`; they share no code with the ray
 // tracer (only diffray/core/error.h for InputError).
 // Units and conventions:
-//  - u (and v) are spatial frequencies in cycles per metre, u = (sinθo − sinθi)/λ (design.md §1);
+//  - u (and v) are spatial frequencies in cycles per metre, u = (sinθo − sinθi)/λ (Cuypers et al. 2012, eq. 8–10);
 //    T(u) = ∫ t(x) e^{−i2πux} dx, so |T(u)|² is the far-field energy per unit u for a unit-intensity plane
 //    wave; ∫|T|² du = ∫|t|² dx (Parseval), the WDF's u-marginal (paper eq. 2).
 //  - sinc(z) = sin(πz)/(πz). Widths, spacings and heights are in metres and must be > 0.
@@ -26,12 +26,12 @@ double doubleSlitFraunhofer(double u, double width_m, double spacing_m);
 /// principal maxima where the ratio is 0/0). n = 2 is doubleSlitFraunhofer; n = 1 is slitFraunhofer.
 double nSlitFraunhofer(double u, double width_m, double spacing_m, int n);
 
-/// Rectangle a × b (separable, design.md §1): |T(u, v)|² = a² sinc²(a u)·b² sinc²(b v). On a screen at
-/// distance z (paraxial) this gives design.md's I = (ab/λz)² sinc²(ax/λz) sinc²(by/λz) once divided by (λz)².
+/// Rectangle a × b (separable): |T(u, v)|² = a² sinc²(a u)·b² sinc²(b v). On a screen at
+/// distance z (paraxial) this gives the classic I = (ab/λz)² sinc²(ax/λz) sinc²(by/λz) once divided by (λz)².
 double rectFraunhofer(double u, double v, double width_m, double height_m);
 
 /// Efficiency of diffraction order q of the sinusoidal phase grating t(x) = exp(i(m/2) sin(2πx/Λ))
-/// (paper eq. 14–15, design.md §1): J_q(m/2)², by the Jacobi–Anger expansion. Any integer q (J_{−q} =
+/// (Cuypers et al. 2012, eq. 14–15): J_q(m/2)², by the Jacobi–Anger expansion. Any integer q (J_{−q} =
 /// (−1)^q J_q) and any real m; Σ_q J_q(m/2)² = 1. Order q leaves at sinθq = sinθi + qλ/Λ.
 double phaseGratingOrderEfficiency(int q, double m);
 

@@ -1,12 +1,12 @@
 #pragma once
 // Exact field of a POINT source near a perfectly thin half-plane (Macdonald 1915; Bowman–Senior–Uslenghi,
 // "Electromagnetic and Acoustic Scattering by Simple Shapes", ch. 8), the 3D companion of
-// sommerfeldHalfPlane in fresnel.h (design.md §3).
+// sommerfeldHalfPlane in fresnel.h.
 //
 // Frame (the one of sommerfeldHalfPlane): the edge is the z axis, the screen is the half-plane
 // {y = 0, x >= 0}; points are given in cylindrical coordinates (ρ, φ, z) with x = ρcosφ, y = ρsinφ and
 // φ in [0, 2π], so the two faces of the screen are φ = 0 (the face y = +0) and φ = 2π (the face y = −0).
-// Time factor e^{+iωt} (design.md §3): the free field of the source, WITHOUT the screen, is e^{−ikR}/R with
+// Time factor e^{+iωt}: the free field of the source, WITHOUT the screen, is e^{−ikR}/R with
 // R the source–receiver distance. With the screen (Macdonald's form, equivalent to the Biot–Tolstoy
 // edge-source integral with ν = ½)
 //   u = B(R, ε₋) ± B(R', ε₊),

@@ -1,5 +1,5 @@
 #pragma once
-// The exact specular response of a shoebox room by image sources (design.md §2), for the `shoebox-ism`
+// The exact specular response of a shoebox room by image sources (Allen & Berkley 1979), for the `shoebox-ism`
 // and `specular-decay` validation cases: every image of an omnidirectional 1 W source in the rigid-walled
 // box [0, Lx] × [0, Ly] × [0, Lz] up to a reflection order and/or a distance, with its delay and its
 // energy per band, and the same sum binned into a band × time histogram.

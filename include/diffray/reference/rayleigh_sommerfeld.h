@@ -1,6 +1,7 @@
 #pragma once
-// Non-paraxial aperture reference (design.md §3): the 2D Rayleigh–Sommerfeld integral of the first kind,
-// evaluated by direct composite Gauss–Legendre quadrature over the openings of an opaque screen.
+// Non-paraxial aperture reference (Goodman, "Introduction to Fourier Optics", ch. 3): the 2D Rayleigh–Sommerfeld
+// integral of the first kind, evaluated by direct composite Gauss–Legendre quadrature over the openings of an opaque
+// screen.
 //
 // Contract: an ORACLE for the tests and for `diffray validate`, independent of everything the ray tracer
 // does (own quadrature nodes; Bessel functions from <cmath>; only diffray/core/error.h is shared).
@@ -10,7 +11,7 @@
 // (Kirchhoff boundary values), 0 elsewhere. Then
 //   U(X, z) = ∫_openings U0(x)·(ik/2)(z/r)·H1⁽¹⁾(kr) dx,   r = √((X − x)² + z²),   H1⁽¹⁾ = J1 + iY1.
 // Time convention e^{−iωt} (H⁽¹⁾ is outgoing): with this sign an infinitely wide opening gives exactly
-// U = e^{ikz}. design.md §3 writes the kernel as −(ik/2)(z/r)H1⁽¹⁾(kr), which differs by the global factor
+// U = e^{ikz}. The kernel is often written as −(ik/2)(z/r)H1⁽¹⁾(kr), which differs by the global factor
 // −1 (it is the right sign for e^{+iωt} with H1⁽²⁾); |U|² is the same either way.
 // |U|² is intensity relative to the incident plane wave. Far away it tends to
 // farFieldScreenIntensity2D(|T(u)|²) of fraunhofer.h.

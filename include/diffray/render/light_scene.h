@@ -47,7 +47,7 @@ struct DiffuseRect {
 
 /// An opaque rectangle whose microstructure lets light through (openings) or reflects it (gratings), all
 /// centred on the frame's origin. Slit and double slit: openings along x, uniform along y (the slits run the
-/// occluder's height) unless slit_height_m > 0. Aperture: an opening a × b (separable, design.md §1).
+/// occluder's height) unless slit_height_m > 0. Aperture: an opening a × b (separable: W(x,y,u,v) = W_x(x,u)·W_y(y,v)).
 /// Grating: t = exp(i(m/2)·sin(2πx/Λ)) (paper eq. 14–15), reflecting the diffracted wave (paper eq. 9) with
 /// power reflectance `reflectance` (the metal layer: a CD's aluminium reflects about 0.9 of the visible).
 /// Lens: an ideal thin lens of focal length focal_length_m behind a rectangular opening a × b centred on the

@@ -1,5 +1,5 @@
 #pragma once
-// Sound in air (design.md §2): the speed of sound and the pure-tone atmospheric absorption of
+// Sound in air: the speed of sound and the pure-tone atmospheric absorption of
 // ISO 9613-1:1993, eq. (3)–(5), with the molar concentration of water vapour from the relative humidity by
 // the saturation-pressure formula of its Annex B (eq. B.1–B.3). Units: Hz, °C, %, kPa in (room::Air);
 // dB/m for the standard's attenuation coefficient α; 1/m for the ENERGY attenuation coefficient m that the
@@ -28,7 +28,7 @@ double airAbsorptionDbPerM(double freq_hz, const Air& air);
 /// band). Entries past bands.size() are 0.
 core::BandArray airAttenuationPerM(const Air& air, const core::Bands& bands);
 
-/// Speed of sound in m/s: core::speedOfSound(air.temperature_c) (design.md §2), after checkAir.
+/// Speed of sound in m/s: core::speedOfSound(air.temperature_c), after checkAir.
 double speedOfSound(const Air& air);
 
 }  // namespace diffray::room

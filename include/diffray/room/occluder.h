@@ -1,7 +1,7 @@
 #pragma once
 // A WBSDF occluder in a room: a planar rectangle whose microstructure t(x, y) makes
 // the rays that cross (or, for gratings, meet) it diffract, by the separable Wigner distribution
-// W(x,y,u,v) = W_x(x,u)·W_y(y,v) of its two local axes (design.md §1). Doors and slits are openings in a
+// W(x,y,u,v) = W_x(x,u)·W_y(y,v) of its two local axes. Doors and slits are openings in a
 // wall, an edge is the open side of a half-plane (the zone beyond a barrier's free edge), a grating is a
 // reflecting phase profile (a diffuser). The surrounding wall keeps its own material and transmission: an
 // occluder covers only its opening (or its grating panel), which is a set of triangles of the room's mesh
@@ -30,10 +30,10 @@ struct OccluderAxis {
   /// image principle the opening is [2·lo − hi, hi] mirrored, so only the hi edge diffracts.
   bool mirror_lo = false;
   /// Opening and Edge: the faces next to each diffracting edge. Kirchhoff: the plain WBSDF (it lands between
-  /// the soft and rigid exact solutions, design.md §4); Rigid / Soft: each ray's energy is also weighted by
+  /// the soft and rigid exact solutions, as Kirchhoff theory does); Rigid / Soft: each ray's energy is also weighted by
   /// |1 ± cos((φ − φ0)/2)/cos((φ + φ0)/2)|², the ratio of the rigid (soft) half-plane's diffraction coefficient
-  /// to the Kirchhoff one (Sommerfeld's two terms, design.md §3), with φ0, φ the incident and outgoing
-  /// directions in the plane across the nearer edge, measured from its screen face.
+  /// to the Kirchhoff one (Sommerfeld's two terms; Born & Wolf, "Principles of Optics", §11.5), with φ0, φ the incident
+  /// and outgoing directions in the plane across the nearer edge, measured from its screen face.
   enum class Faces { Kirchhoff, Rigid, Soft };
   Faces faces = Faces::Kirchhoff;
   int count = 1;

@@ -17,7 +17,7 @@ namespace diffray::room {
 
 using core::Vec3;
 
-/// A surface's acoustic properties, one value per band (design.md §2). absorption α is the fraction of
+/// A surface's acoustic properties, one value per band. absorption α is the fraction of
 /// incident energy not reflected; transmission τ ≤ α is the part of it that passes through the surface
 /// (the rest, α − τ, is lost); scattering s is the fraction of the reflected energy that leaves as a
 /// Lambert (cosine) lobe instead of specularly (ISO 17497-1).

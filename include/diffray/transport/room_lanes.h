@@ -1,5 +1,5 @@
 #pragma once
-// The acoustic tracer's lane helpers (transport/room_tracer.cpp): Pair, two doubles in one SSE2 register
+// The acoustic tracer's lane functions (transport/room_tracer.cpp): Pair, two doubles in one SSE2 register
 // for the listener pre-test, with its sign-bit, minimum and any-lane tests; and the form in which the bounce
 // loop carries a path's band energies (Octaves for eight bands, else a BandArray), with the conversions
 // to and from a Path's BandArray. Plain values and pure functions: thread-safe. Other targets than x86-64

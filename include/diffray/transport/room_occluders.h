@@ -1,6 +1,6 @@
 #pragma once
 // The WBSDF occluders of a room at run time (room/occluder.h): which triangle belongs to which occluder,
-// and the scattering of a single-wavelength ray that meets one (paper eq. 8–10, design.md §1). A hit at
+// and the scattering of a single-wavelength ray that meets one (paper eq. 8–10). A hit at
 // local (x, y) with incident direction cosines (α, β, γ) draws shifts (u', v') from W_x(x,·) and W_y(y,·):
 // openings and edges by the analytic edge kernel (wbsdf/edge_kernel.h, exact for any wavelength), slit
 // arrays and gratings from a WbsdfTable built once for the shortest wavelength of the bands (W in u does not

@@ -4,7 +4,7 @@
 // once (core::BandArray; with eight bands, Octaves: floats relative to the emitted level). At a surface it is reflected or transmitted with probabilities proportional to
 // the band-mean reflected (1 − α) and transmitted (τ) fractions; a reflection is Lambert (cosine lobe)
 // with the band-mean scattering probability, else specular; the band energies are reweighted by the
-// per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF occluder, next issue,
+// per-band ratio, so every band stays unbiased while the ray stays one ray (a WBSDF occluder
 // sends each band its own way: RoomTraceOptions::occluders). Air absorption e^{−m·d} per band (ISO 9613-1) is applied at scoring,
 // from the path length d; Russian roulette below `roulette_level` of the emitted energy keeps the
 // estimator unbiased. Listener spheres score the track length inside them (receiver/sphere.h) into band ×
@@ -62,8 +62,8 @@ struct RoomTraceOptions {
   /// WBSDF diffraction at the room's occluders (null: occluders are plain surfaces, openings pass rays
   /// straight). At its first occluder a ray that carries every band goes on in one of them, chosen at
   /// random (its energy times the band count), at one frequency drawn uniformly inside that band
-  /// (design.md §2), since the WBSDF sends each wavelength its own way; the energies become signed (paper
-  /// section 4).
+  /// (as a band filter averages fringes), since the WBSDF sends each wavelength its own way; the energies become signed
+  /// (paper section 4).
   const RoomOccluders* occluders = nullptr;
   /// WBSDF scatterings per path; later occluders are plain surfaces (openings pass rays straight, with the
   /// same mean energy, |t|² = 1). Each scattering multiplies the ray by a signed weight of magnitude ~ln of

@@ -110,8 +110,8 @@ struct Tracer {
 
   // The bands part ways: the path goes on in one band, chosen uniformly among those with energy (its energy
   // times their count keeps every band unbiased), at one frequency drawn uniformly inside the band
-  // (design.md §2). One band rather than a split into all of them: a split multiplies the work after a
-  // doorway by the band count (5× slower on two-rooms) for the same variance per unit of time.
+  // (as a band filter averages fringes). One band rather than a split into all of them: a split multiplies the work
+  // after a doorway by the band count (5× slower on two-rooms) for the same variance per unit of time.
   void chooseBand(core::FastRng& rng, Path& s) const;
 
   // Next-event estimation at occluder k (RoomOccluders::expectedSphereScore): every listener in view of the

@@ -2,7 +2,7 @@
 // A signed-energy transport scene: planar occluders carrying WBSDFs, screens (receivers) and plain
 // absorbers, built into one Embree scene (or, for tests, a brute-force intersector over the same mesh).
 // Every object is a rectangle in its own Frame (world metres). Occluders are indexed by their local x and y:
-// a separable WBSDF W(x,y,u,v) = W_x(x,u)·W_y(y,v) (design.md §1); a missing y table means the structure
+// a separable WBSDF W(x,y,u,v) = W_x(x,u)·W_y(y,v); a missing y table means the structure
 // is uniform along y (an infinitely tall slit or door: a 2D problem). Immutable once built; thread-safe.
 #include <memory>
 #include <optional>
@@ -41,7 +41,7 @@ struct Absorber {
 /// Power = intensity·area·|dir·n| (W when intensity is in W/m²). Monochromatic at wavelength_m, or, when
 /// wavelength_max_m > wavelength_m, a flat spectrum in frequency between c/wavelength_max_m and
 /// c/wavelength_m: each ray carries one wavelength drawn from it, so fringes average over the band as
-/// a band filter would (design.md §2).
+/// a band filter would.
 struct CollimatedSource {
   geometry::Frame frame;
   double half_x_m = 1.0, half_y_m = 1.0;

@@ -1,5 +1,5 @@
 #pragma once
-// The signed-energy ray tracer (design.md §1). Rays leave a source with a wavelength and an energy,
+// The signed-energy ray tracer (Cuypers et al. 2012). Rays leave a source with a wavelength and an energy,
 // are intersected with the scene (Embree), and at each occluder draw a shift (u', v') from its WBSDF
 // (paper eq. 8, angle-shift invariance: u_o = u_i + u'); the sign of W travels in the ray's energy.
 // Outgoing direction (λu_o, λv_o, ±√(1 − λ²(u_o² + v_o²))); an imaginary root is an evanescent wave:

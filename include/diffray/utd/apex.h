@@ -1,5 +1,5 @@
 #pragma once
-// Diffraction points by Fermat's principle (design.md §3): the path a → edge → b (or a → edge 1 → edge 2
+// Diffraction points by Fermat's principle: the path a → edge → b (or a → edge 1 → edge 2
 // → b) of least length through points of the edges' lines. On a straight edge the least path meets the
 // edge on Keller's cone: the rays make equal angles with the edge. Results are arc lengths from each edge's
 // start; a solution is returned only if it lies on the segments [0, length_m] (within 1e-9 × length).

@@ -1,8 +1,8 @@
 #pragma once
-// The Kouyoumjian–Pathak UTD wedge diffraction coefficient and its transition function (design.md §3;
-// R. G. Kouyoumjian and P. H. Pathak, Proc. IEEE 62(11), 1974, eq. 25–29, with Luebbers' face reflection
-// coefficients on the φ + φ′ terms, IEEE Trans. AP-32(1), 1984). Time factor e^{iωt}: an outgoing wave is
-// e^{−ikr}. Angles in radians, k in rad/m, distances in metres.
+// The Kouyoumjian–Pathak UTD wedge diffraction coefficient and its transition function (R. G. Kouyoumjian and P. H.
+// Pathak, Proc. IEEE 62(11), 1974, eq. 25–29, with Luebbers' face reflection coefficients on the φ + φ′ terms, IEEE
+// Trans. AP-32(1), 1984). Time factor e^{iωt}: an outgoing wave is e^{−ikr}. Angles in radians, k in rad/m, distances
+// in metres.
 //
 // Wedge frame: the air (exterior) sector spans φ ∈ [0, nπ], face 0 at φ = 0, face n at φ = nπ; n = 2 is a
 // half-plane, n = 1.5 a right-angled (90°) wedge. φ′ is the direction the incident ray comes from, φ the
@@ -36,7 +36,7 @@ struct FaceReflection {
   double facen = 1.0;  ///< Rn: multiplies the term with the reflection boundary of face n
 };
 
-/// Kouyoumjian–Pathak D(n, k, L, φ, φ′, β0) with face reflection coefficients (design.md §3):
+/// Kouyoumjian–Pathak D(n, k, L, φ, φ′, β0) with face reflection coefficients (Luebbers 1984):
 ///   D = −e^{−iπ/4}/(2n√(2πk) sin β0) · [cot((π + β⁻)/2n) F(kL a⁺(β⁻)) + cot((π − β⁻)/2n) F(kL a⁻(β⁻))
 ///        + R0 cot((π − β⁺)/2n) F(kL a⁻(β⁺)) + Rn cot((π + β⁺)/2n) F(kL a⁺(β⁺))],  β^∓ = φ ∓ φ′,
 /// a^±(β) = 2cos²((2nπN^± − β)/2), N^± the integer nearest to solving 2πnN^± − β = ±π. Units: D in √m.

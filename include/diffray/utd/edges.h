@@ -1,5 +1,5 @@
 #pragma once
-// Diffracting edges of a room mesh, for UTD (design.md §3). An edge is a straight segment where the
+// Diffracting edges of a room mesh, for UTD (Kouyoumjian & Pathak 1974). An edge is a straight segment where the
 // surface bends or ends, seen from the air: a wedge whose exterior (air) sector spans nπ with n > 1
 // (convex as seen from the air). A free edge of a thin plate is a half-plane (n = 2); the edge of a box
 // obstacle or of a doorway is a right-angled wedge (n = 1.5); the inside corners of a room are concave

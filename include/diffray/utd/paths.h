@@ -1,5 +1,5 @@
 #pragma once
-// UTD sound paths between a source and a listener in a room (design.md §3): the geometric part (direct
+// UTD sound paths between a source and a listener in a room (Kouyoumjian & Pathak 1974): the geometric part (direct
 // sound, first-order specular reflections) and first- and second-order edge diffraction, each with its
 // exact length (delay = length / c) and its complex pressure at any frequency for a point source of unit
 // amplitude, p = e^{−ikR}/R in free field (time factor e^{iωt}).

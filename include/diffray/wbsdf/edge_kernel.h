@@ -2,12 +2,12 @@
 // Analytic importance sampling of the Wigner distribution of an opening near its edges, for any
 // wavelength, without a table.
 //
-// A slit of width a has W(x,u) = 2(a − 2|x|)·sinc(2u(a − 2|x|)) (design.md §1), i.e. W = 4d·sinc(4du) with
-// d = a/2 − |x| the distance to the nearer edge; the step (half-plane edge) has W = sin(4πux)/(πu), the same
-// 4d·sinc(4du) with d = x. In the variable w = 4d·u the measure W(x,u) du = sinc(w) dw no longer depends on
+// A slit of width a has W(x,u) = 2(a − 2|x|)·sinc(2u(a − 2|x|)) (Cuypers et al. 2012, eq. 2, for a rect), i.e. W =
+// 4d·sinc(4du) with d = a/2 − |x| the distance to the nearer edge; the step (half-plane edge) has W = sin(4πux)/(πu),
+// the same 4d·sinc(4du) with d = x. In the variable w = 4d·u the measure W(x,u) du = sinc(w) dw no longer depends on
 // d: one kernel serves every hit position, every edge distance and every wavelength. sinc(z) = sin(πz)/(πz).
 // ∫|sinc| diverges (logarithmically), so the kernel is cut at |w| ≤ w_max; diffray takes w_max = 4d·u_max with
-// u_max = 2/λ, past which every shift is evanescent for any incidence (design.md §1): nothing that
+// u_max = 2/λ, past which every shift is evanescent for any incidence (|λu_o| ≤ 1 for a propagating wave): nothing that
 // propagates is cut.
 //
 // The tracer narrows the range further to [w_lo, w_hi], the shifts that leave a propagating ray for the

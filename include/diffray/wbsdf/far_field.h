@@ -2,7 +2,7 @@
 // The far-field (Fraunhofer) pattern of a rectangular opening along one axis, as a sampler triad.
 //
 // An opening of width A (t = 1 on it, 0 elsewhere) has T(u) = A·sinc(Au), so its Wigner distribution
-// integrated over the opening is ∫W(x,u) dx = |T(u)|² = A²·sinc²(Au) (design.md §1: the second marginal).
+// integrated over the opening is ∫W(x,u) dx = |T(u)|² = A²·sinc²(Au) (the Wigner distribution's second marginal).
 // Divided by the opening's width (∫|t|² = A) it is a probability density of the shift u: in w = A·u it is
 // sinc²(w) dw, one kernel for every width and wavelength, with ∫sinc² = 1 over the whole line.
 //

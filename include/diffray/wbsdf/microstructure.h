@@ -41,7 +41,7 @@ class Microstructure {
 };
 
 /// Openings [begin, end] in an opaque screen: a slit, N slits, a door, or a half-plane edge (end = +inf).
-/// W is the sum of the cross-Wigner distributions of every pair of openings (design.md §1: for two slits,
+/// W is the sum of the cross-Wigner distributions of every pair of openings (for two slits,
 /// W_r(x−d/2) + W_r(x+d/2) + 2cos(2πud)·W_r(x), the signed cross term lying midway between them).
 class Openings : public Microstructure {
  public:

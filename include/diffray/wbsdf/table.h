@@ -1,5 +1,5 @@
 #pragma once
-// A tabulated one-dimensional WBSDF with importance sampling (design.md §1, paper section
+// A tabulated one-dimensional WBSDF with importance sampling (Cuypers et al. 2012, section
 // "Implementation": "the pdf is calculated using the absolute values ... in the lookup table").
 //
 // Rows are x-cells of width dx on the occluder's local x axis (metres); columns are u-cells of width du
