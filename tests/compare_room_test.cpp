@@ -141,7 +141,7 @@ TEST(CompareRoom, WhichScenesAreRooms) {
 // ---- where the free-field reference applies ----------------------------------------------------------------
 
 TEST(CompareRoom, FreeFieldReferenceOnlyBeyondTheDoorPlane) {
-  // two-rooms.json: the doorway is the rectangle x = 6.1 (README); the source at x = 2. A listener applies
+  // two-rooms.json: the doorway is the rectangle x = 6.1 (rooms/README.md); the source at x = 2. A listener applies
   // when its whole sphere (radius 0.5 m) lies at x > 6.1.
   dr::Room room = dr::loadRoom(kRooms + "two-rooms.json");
   const auto rule = [&](int l) { return dc::freeFieldApplicability(room, l); };

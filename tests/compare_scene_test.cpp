@@ -53,7 +53,7 @@ TEST(CompareShadowAngle, BarrierEdgeMatchesTheElevationAnglesByHand) {
       EXPECT_NEAR(*got, expected, 1e-9) << "h=" << h << " y=" << y;
     }
   }
-  // The two values the README quotes for this scene: on the boundary, and 17.1° into the shadow.
+  // The two values tests/README.md quotes for this scene: on the boundary, and 17.1° into the shadow.
   EXPECT_NEAR(*dc::shadowAngleDeg(room, s, Vec3(6, 0, 6)), 0.0, 1e-9);
   EXPECT_NEAR(*dc::shadowAngleDeg(room, s, Vec3(6, 0, 4)), deg(std::atan(0.5) - std::atan(1.0 / 6.0)), 1e-9);
   // The source on the other side of the wall: the mirror geometry gives the same angles.
@@ -94,7 +94,7 @@ TEST(CompareShadowAngle, DoorwayJambsByHand) {
   // The source behind the door instead (x > 0): the mirror geometry gives the same angles.
   EXPECT_NEAR(*dc::shadowAngleDeg(room, Vec3(2.5, 0, 1.5), Vec3(-2.5, 0.9, 1.0)), 0.0, 1e-9);
   EXPECT_NEAR(*dc::shadowAngleDeg(room, Vec3(2.5, 0, 1.5), Vec3(-2.5, 0.0, 1.0)), -2.0 * deg(b), 1e-9);
-  // The shipped listeners: −20.4°, 0°, 10°, 30° (README), each checked against the formula by hand.
+  // The shipped listeners: −20.4°, 0°, 10°, 30° (tests/README.md), each checked against the formula by hand.
   const std::map<std::string, double> by_hand = {
       {"in-view", -2.0 * deg(b)},
       {"edge-of-view", deg(std::atan2(0.89 - 0.45, 2.46) - b)},

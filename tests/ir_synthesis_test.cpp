@@ -242,7 +242,7 @@ TEST(StatIrSynthesis, PoissonRateFollowsTheImageSourceDensity) {
 // that is the price of a coherent signal). Below 1 kHz a band
 // cannot hold the envelope's detail (bandwidth < 1/bin) and the direct sound interferes with the early
 // diffuse field within the filter's ~1/B time resolution: there the figures are printed, not asserted
-// (measured: see the report of this work and README "metrics").
+// (measured: tests/README.md, "Metrics from the histograms and from the WAV").
 TEST(StatIrSynthesis, MetricsOfTheSynthesizedIrAgreeWithTheHistogram) {
   EnergyResponse r = exponentialResponse(1.0, 0.01, 6.0, 2.5);
   Arrival direct;

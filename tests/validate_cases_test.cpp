@@ -9,7 +9,7 @@
 // exact W would (x and u cell widths, validate/slit_setup.cpp), a blur whose effect on a bin average is
 // below that.
 // door-rs additionally carries the measured model bias of first-order Wigner transport in the
-// non-paraxial near field (README, "Validation"): it is checked against that documented level, which is
+// non-paraxial near field (tests/README.md, "Figures"): it is checked against that documented level, which is
 // above the 1 % target.
 #include <gtest/gtest.h>
 
@@ -89,7 +89,7 @@ TEST(StatValidate, GratingOrdersCarryBesselEfficiencies) {
 
 TEST(StatValidate, DoorAgreesWithRayleighSommerfeldWithinDocumentedBias) {
   // Measured with 16M rays per frequency (noise σ ≤ 0.16 % of peak): 0.87, 0.88, 1.11, 1.10 % of peak at
-  // 125, 250, 500, 1000 Hz, at the shadow boundaries (README, "The door"). The allowance is that bias,
+  // 125, 250, 500, 1000 Hz, at the shadow boundaries (tests/README.md, "The door"). The allowance is that bias,
   // 1.2 %, on top of the 5σ noise bound.
   // 8M rays (4M per frequency) keep 5σ near 1 % of peak, so the test is not dominated by noise.
   const auto r = runCase("door-rs", 8'000'000, {{"freq", {250, 1000}}});

@@ -57,7 +57,7 @@ TEST(StatValidateDiffraction, HalfPlaneWithinTheTargets) {
   ASSERT_EQ(r.rows.size(), 4u * 6u);  // listeners × octave bands 125 Hz–4 kHz
   const Worst w = checkTargets(r);
   EXPECT_EQ(w.rows, 4 * 5);  // every listener, bands 250 Hz–4 kHz
-  // UTD is the half-plane's solution up to the panel's far edges (README: 0.01–0.1 dB).
+  // UTD is the half-plane's solution up to the panel's far edges (tests/README.md: 0.01–0.1 dB).
   EXPECT_LT(r.extra.at("utd_worst_db"), 0.3);
   report("half-plane", r, w);
 }

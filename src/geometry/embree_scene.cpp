@@ -71,7 +71,7 @@ Hit EmbreeScene::intersect(const Ray& ray) const {
 namespace {
 // Lanes [first, first + W) of a packet as Embree's W-wide packet, traced with rtcIntersectW. The coherent
 // hint picks Embree's traversal for rays of similar origin and direction, as a packet of one source's rays
-// is (it changes the speed, not the hits): 0.69–0.72 → 0.83 on the transport bench (README, Benchmarks).
+// is (it changes the speed, not the hits): 0.69–0.72 → 0.83 on the transport bench (tools/README.md).
 template <int W, typename RayHitW, typename IntersectW>
 void tracePacketLanes(RTCScene scene, const RayPacket& rays, int first, const std::vector<int>& object_of_triangle,
                       HitPacket& hits, IntersectW intersect) {

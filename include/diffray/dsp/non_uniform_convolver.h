@@ -7,7 +7,7 @@
 //  * tail stage s = 1, 2, …: block N_s = B·8^s over h[N_s, N_{s+1}) (the last stage to the IR's end), while
 //    N_s ≤ max(kMaxTailBlock, B); each tail stage is fed whole blocks of N_s samples and its output read
 //    N_s samples late, which is exactly its segment's offset, so the sum stays exact and zero-latency.
-// Scheduling (chosen for determinism; see README "Real-time playback"): a tail stage's block is computed in
+// Scheduling (chosen for determinism; see impulse/README.md, "Real-time playback"): a tail stage's block is computed in
 // the process() call that completes it (one PartitionedConvolver::process of N_s samples), not in a worker
 // thread. The cost per call is the head's (two FFTs of 2B) plus, now and then, one tail block. To keep two
 // tail blocks from landing in the same audio block, stage s starts with N_s/2 zeros already in its input
