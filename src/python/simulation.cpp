@@ -1,5 +1,7 @@
 // diffray.simulate, diffray.Simulation (histograms, impulse responses, metrics) and diffray.convolve:
-// the facade's calls (diffray/diffray.h) with the CLI's defaults, the GIL released while they run.
+// the facade's calls (diffray/diffray.h) with the CLI's defaults, the GIL released while they run; and the
+// module's entry point, which translates the library's bad-input error (core::InputError) into ValueError
+// with the CLI's one-line message.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -7,6 +9,7 @@
 #include <memory>
 
 #include "bindings.h"
+#include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/diffray.h"
@@ -34,6 +37,20 @@ std::uint64_t positiveCount(const py::object& value, const std::string& what, st
   return static_cast<std::uint64_t>(v);
 }
 
+// A seed from Python: a whole number in [0, 2^64 - 1], or the room's when None (the CLI's words).
+std::uint64_t seedOf(const py::object& value, std::uint64_t fallback) {
+  if (value.is_none()) return fallback;
+  const std::string text = py::str(value);
+  if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value) ||
+      text.find_first_not_of("0123456789") != std::string::npos)
+    throw core::InputError("seed", "must be a whole number >= 0, got " + text);
+  try {
+    return value.cast<std::uint64_t>();
+  } catch (const py::cast_error&) {
+    throw core::InputError("seed", "must be at most 18446744073709551615 (2^64 - 1), got " + text);
+  }
+}
+
 std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& rays, const py::object& seed,
                                      const std::string& diffraction, int diffraction_order, const py::object& ism_order,
                                      double length, int threads, bool progress) {
@@ -42,7 +59,7 @@ std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& r
   const room::Room& room = out->room;
   transport::RoomSimulationOptions so;
   so.rays = positiveCount(rays, "rays", room.output.rays);
-  out->seed = seed.is_none() ? room.output.seed : seed.cast<std::uint64_t>();
+  out->seed = seedOf(seed, room.output.seed);
   so.seed = out->seed;
   if (!ism_order.is_none()) {
     so.ism_order = ism_order.cast<int>();
@@ -196,3 +213,27 @@ only). Releases the GIL while it runs.)");
 }
 
 }  // namespace diffray::python
+
+PYBIND11_MODULE(_diffray, m) {
+  m.doc() = R"(diffray: room acoustics by ray tracing.
+
+    room = diffray.Room.shoebox([6, 4, 3], materials="concrete-rough")
+    room.add_source([2, 2, 1.5]); room.add_listener([4, 2.5, 1.5], radius=0.3)
+    sim = diffray.simulate(room, rays=20000, seed=1)
+    h = sim.impulse_response(0)        # numpy, at sim.sample_rate
+    sim.metrics(0)[1000]["T30"]        # seconds
+
+load_scene reads a scene file (rooms/README.md); simulate traces it as `diffray ir` does (same seed, same
+numbers); convolve auralizes a dry signal. Bad input raises ValueError with the CLI's one-line message.)";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const diffray::core::InputError& e) {
+      PyErr_SetString(PyExc_ValueError, diffray::core::oneLine(e.what()).c_str());
+    }
+  });
+  diffray::python::bindRoom(m);
+  diffray::python::bindSimulation(m);
+  m.attr("__all__") = py::make_tuple("Room", "Simulation", "load_scene", "material_names", "simulate", "convolve");
+  m.attr("__version__") = DIFFRAY_VERSION;
+}

@@ -1,6 +1,5 @@
-# Shared fixtures: the built CLI (DIFFRAY_CLI) and the repository's rooms (DIFFRAY_ROOMS), both set by CTest.
+# Shared fixture: the built CLI (DIFFRAY_CLI, set by CTest), which the Python results are compared with.
 import os
-import pathlib
 
 import pytest
 
@@ -12,7 +11,3 @@ def cli():
         pytest.skip("DIFFRAY_CLI is not set (CTest sets it)")
     return path
 
-
-@pytest.fixture
-def rooms():
-    return pathlib.Path(os.environ.get("DIFFRAY_ROOMS", pathlib.Path(__file__).parents[2] / "rooms"))

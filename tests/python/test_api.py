@@ -62,6 +62,8 @@ def test_bad_input_raises_value_error(tmp_path, sim):
         diffray.load_scene(str(missing))
     with pytest.raises(ValueError, match=r"^rays: must be a whole number >= 1"):
         diffray.simulate(small_room(), rays=-5)
+    with pytest.raises(ValueError, match=r"^seed: must be a whole number >= 0, got -1$"):
+        diffray.simulate(small_room(), rays=10, seed=-1)
     with pytest.raises(ValueError, match=r"^listener: index 2 out of range \(the room has 2 listeners\)$"):
         sim.metrics(2)
     with pytest.raises(ValueError, match="diffraction"):
