@@ -1,5 +1,6 @@
-// diffray.simulate, diffray.Simulation (histograms, impulse responses, metrics) and diffray.convolve:
-// the facade's calls (diffray/diffray.h) with the CLI's defaults, the GIL released while they run; and the
+// diffray.simulate, diffray.Simulation (histograms, impulse responses, metrics), diffray.convolve and
+// diffray.render: the facade's and the light renderer's calls with the CLI's defaults (`diffray ir`,
+// `diffray render`), the GIL released while they run; and the
 // module's entry point, which translates the library's bad-input error (core::InputError) into ValueError
 // with the CLI's one-line message.
 #include <pybind11/numpy.h>
@@ -13,6 +14,8 @@
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/diffray.h"
+#include "diffray/render/film.h"
+#include "diffray/render/light_tracer.h"
 #include "diffray/room/checks.h"
 
 namespace py = pybind11;
@@ -165,6 +168,33 @@ py::array_t<double> convolve(const py::array_t<double, py::array::c_style | py::
                              wet.samples.data());
 }
 
+// What `diffray render SCENE --photons N --seed S` computes, as the linear sRGB image of its float output.
+py::array_t<float> render(const std::string& path, const py::object& photons, const py::object& seed, int threads,
+                          bool progress) {
+  const render::LightScene scene = render::loadLightScene(path);
+  render::RenderOptions options;
+  options.photons = positiveCount(photons, "photons", scene.settings.photons);
+  options.seed = seedOf(seed, scene.settings.seed);
+  if (threads < 0) throw core::InputError("threads", "must be >= 0 (0: every core)");
+  image::Image img;
+  {
+    py::gil_scoped_release release;
+    core::ThreadLimit limit(threads);
+    const auto prepared = render::prepareScene(scene, false, progress ? core::ProgressFactory(core::progressOfUnknownSize)
+                                                                      : core::ProgressFactory());
+    std::unique_ptr<core::Progress> bar;
+    if (progress) {
+      bar = std::make_unique<core::Progress>("render " + scene.name, options.photons);
+      options.on_progress = [&bar](std::uint64_t n) { bar->add(n); };
+    }
+    const render::RenderResult r = render::renderLight(*prepared, options);
+    if (bar) bar->finish();
+    img = render::linearSrgb(r);
+  }
+  return py::array_t<float>({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width), py::ssize_t{3}},
+                            img.rgb.data());
+}
+
 }  // namespace
 
 void bindSimulation(py::module_& m) {
@@ -206,6 +236,11 @@ the same result as `diffray ir --seed`. diffraction: "none", "utd" or "wbsdf" (d
 scatterings per path). ism_order: image-source order (None: the room's; -1: rays only). length: IR length
 in s (0: the room's, or until -60 dB). threads: 0 = every core. progress: a bar on stderr (a terminal
 only). Releases the GIL while it runs.)");
+  m.def("render", &render, py::arg("path"), py::arg("photons") = py::none(), py::arg("seed") = py::none(),
+        py::arg("threads") = 0, py::arg("progress") = true,
+        "Renders a light scene (rooms/light/README.md) as `diffray render` does: the linear sRGB image (float32, "
+        "height × width × 3, top row first; the CLI's .pfm/.exr before its exposure). photons, seed: None = the "
+        "scene's. Releases the GIL.");
   m.def("convolve", &convolve, py::arg("dry"), py::arg("ir"),
         "The whole linear convolution of `dry` with `ir` (len(dry) + len(ir) - 1 frames), 1-D or frames × "
         "channels as diffray auralize pairs channels; single-precision FFT (within 1e-6 of the peak). "
@@ -234,6 +269,7 @@ numbers); convolve auralizes a dry signal. Bad input raises ValueError with the 
   });
   diffray::python::bindRoom(m);
   diffray::python::bindSimulation(m);
-  m.attr("__all__") = py::make_tuple("Room", "Simulation", "load_scene", "material_names", "simulate", "convolve");
+  m.attr("__all__") = py::make_tuple("Room", "Simulation", "load_scene", "material_names", "simulate", "convolve",
+                                    "render");
   m.attr("__version__") = DIFFRAY_VERSION;
 }

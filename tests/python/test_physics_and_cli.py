@@ -1,6 +1,7 @@
 # The Python module against the CLI (same scene and seed: the same numbers) and against Eyring's formula.
 import json
 import math
+import pathlib
 import subprocess
 
 import numpy as np
@@ -78,3 +79,19 @@ def test_t30_matches_eyring():
     c = 331.3 * math.sqrt(1 + 20 / 273.15)
     eyring = 24 * math.log(10) * v / (c * -s * math.log(1 - a))
     assert sim.metrics(0)[500]["T30"] == pytest.approx(eyring, rel=0.05)
+
+
+def test_render_is_the_cli_float_image(tmp_path, cli):
+    # The Python image equals the CLI's PFM (little-endian, rows bottom-up) bit for bit, same photons and seed.
+    scene = str(pathlib.Path(__file__).parents[2] / "rooms" / "light" / "laser-aperture.json")
+    png = tmp_path / "la.png"
+    subprocess.run([cli, "render", scene, "--photons", "20000", "--seed", "3", "-o", str(png)],
+                   capture_output=True, check=True)
+    data = (tmp_path / "la.pfm").read_bytes()
+    header = data.split(b"\n", 3)
+    width, height = map(int, header[1].split())
+    assert header[0] == b"PF" and float(header[2]) < 0
+    pfm = np.frombuffer(header[3], dtype="<f4").reshape(height, width, 3)[::-1]
+    img = diffray.render(scene, photons=20000, seed=3, progress=False)
+    assert img.dtype == np.float32 and img.shape == (height, width, 3)
+    assert np.array_equal(img, pfm) and np.any(img > 0)
