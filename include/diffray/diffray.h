@@ -47,14 +47,15 @@ inline void requireListener(const transport::RoomSimulation& sim, std::size_t li
 }
 
 /// Listener `listener`'s impulse response at the room's output.sample_rate_hz over the simulated length
-/// (ir::synthesize), as a one-channel buffer. The same seed gives the same samples.
+/// (ir::synthesize), as a one-channel buffer. The same seed gives the same samples, those of channel
+/// `listener` of `diffray ir --seed SEED` (ir::listenerSeed).
 inline audio::AudioBuffer impulseResponse(const room::Room& room, const transport::RoomSimulation& sim,
                                           std::size_t listener, std::uint64_t seed = 1) {
   requireListener(sim, listener);
   audio::AudioBuffer ir;
   ir.sample_rate_hz = room.output.sample_rate_hz;
   ir.samples = ir::synthesize(sim.listeners[listener], ir.sample_rate_hz, sim.length_s, room.volume(),
-                              sim.speed_of_sound_m_s, seed);
+                              sim.speed_of_sound_m_s, ir::listenerSeed(seed, listener));
   return ir;
 }
 

@@ -47,7 +47,7 @@ Run run(const room::Room& room, const std::string& model, std::uint64_t rays, st
     r.figures.push_back(ir::metricsFromHistograms(totals, resp.bin_s));
     // The synthesized IR's figures, as `diffray ir` computes them (its synthesis seed per listener).
     const std::vector<double> p = ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                                 sim.speed_of_sound_m_s, seed + 7919ull * l);
+                                                 sim.speed_of_sound_m_s, ir::listenerSeed(seed, l));
     r.wav.push_back(ir::metricsFromSignal(p, room.output.sample_rate_hz, room.bands));
   }
   return r;

@@ -34,6 +34,8 @@
 #include "diffray/dsp/crossfade_convolver.h"
 #include "diffray/dsp/resample.h"
 #include "diffray/dsp/spectrogram.h"
+#include "diffray/ir/synthesis.h"
+#include "diffray/room/checks.h"
 #include "diffray/room/scene_file.h"
 
 namespace diffray::cli {
@@ -183,7 +185,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     // else at the room's own rate and resampled (as filters) to the dry signal's; either way with the room
     // rate's gain (door::impulseResponseFor).
     const double synth_fs = door::synthesisRateHz(room.bands, room.output.sample_rate_hz, fs);
-    checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
+    room::checkSynthesis(room, 0.0, synth_fs, (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
     if (synth_fs != fs) {  // the IRs will be resampled to the dry signal's rate: can they be? (before the tracing)
       try {
         dsp::resample(std::vector<float>(1, 0.0f), 1, synth_fs, fs);
@@ -235,7 +237,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       for (std::size_t i = 0; i < chosen.size(); ++i) {
         const int l = chosen[i];
         irs[k].push_back(door::impulseResponseFor(cr.responses[k][l], room.output.sample_rate_hz, fs, cr.length_s,
-                                                  cr.volume_m3, cr.speed_of_sound_m_s, common.seed + 7919ull * l));
+                                                  cr.volume_m3, cr.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
         nlohmann::ordered_json row = nlohmann::ordered_json::array(), absolute = nlohmann::ordered_json::array();
         for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(energy[k][i][b]);
         energies[room.listeners[l].name] = absolute;

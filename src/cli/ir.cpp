@@ -22,6 +22,7 @@
 #include "diffray/ir/metrics.h"
 #include "diffray/ir/synthesis.h"
 #include "diffray/ir/uncertainty.h"
+#include "diffray/room/checks.h"
 #include "diffray/room/scene_file.h"
 #include "diffray/transport/room_simulation.h"
 
@@ -126,7 +127,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     // shoebox.json` once destroyed shoebox.json), and `-o materials.wav` the material library.
     checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot}, room.input_files);
     checkPlotOption("--plot", opts->plot);
-    checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
+    room::checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
 
     transport::RoomSimulationOptions so;
@@ -160,7 +161,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     for (std::size_t l = 0; l < room.listeners.size(); ++l) {
       const auto& resp = sim.listeners[l];
       channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                        sim.speed_of_sound_m_s, common.seed + 7919ull * l));
+                                        sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
       std::vector<std::vector<double>> totals;
       for (int b = 0; b < room.bands.size(); ++b) totals.push_back(resp.total(b));
       auto from_hist = ir::metricsFromHistograms(totals, resp.bin_s);

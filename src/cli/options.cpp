@@ -213,26 +213,6 @@ std::string withExtension(const std::string& path, const std::string& ext) {
   return std::filesystem::path(path).replace_extension(ext).string();
 }
 
-void checkSynthesis(const room::Room& room, double length_s, double sample_rate_hz, const std::string& rate_field) {
-  const std::string where = room.file.empty() ? "room" : room.file;
-  const double fs = sample_rate_hz;
-  const int top = room.bands.size() - 1;
-  if (!(room.bands.upperHz(top) < 0.5 * fs))
-    throw core::InputError(rate_field, "the " + room.bands.label(top) + " Hz band reaches past the Nyquist frequency of " +
-                                           std::to_string(static_cast<long>(fs)) + " Hz; raise the sample rate");
-  if (!(room.volume() > 0.0))
-    throw core::InputError(where, "the geometry encloses no volume, which the IR synthesis needs (V in the "
-                                  "reflection density 4πc³t²/V)");
-  // Longest possible IR: --length, the file's length, or (auto) max_length_s.
-  const double longest = length_s > 0 ? length_s : (room.output.ir_length_s > 0 ? room.output.ir_length_s
-                                                                                 : room.output.max_length_s);
-  constexpr double kMaxFrames = 33554432.0;  // 2^25 frames: ~12 min at 48 kHz, a few GB while synthesizing
-  if (longest * fs > kMaxFrames)
-    throw core::InputError(where + ": output", "an IR of " + std::to_string(longest) + " s at " +
-                                                   std::to_string(static_cast<long>(fs)) +
-                                                   " Hz is over 2^25 samples; shorten max_length_s/ir_length_s");
-}
-
 std::vector<std::string> nearestNames(const std::string& word, const std::vector<std::string>& names) {
   std::vector<std::pair<std::size_t, std::string>> near;
   for (const std::string& n : names) {

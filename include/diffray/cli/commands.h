@@ -104,11 +104,6 @@ std::string reasonOf(const core::InputError& e);
 /// `path` with its extension replaced by `ext` (".json").
 std::string withExtension(const std::string& path, const std::string& ext);
 
-/// What IR synthesis will need, checked before a (long) trace rather than after it: the room's top band below
-/// the Nyquist frequency of `sample_rate_hz` (else an InputError naming `rate_field`), an enclosed volume, and
-/// an IR (`length_s`, or the room file's) of at most 2^25 samples.
-void checkSynthesis(const room::Room& room, double length_s, double sample_rate_hz, const std::string& rate_field);
-
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
 Runner addWdfCommand(CLI::App& app, CommonOptions& common);
 Runner addMetricsCommand(CLI::App& app, CommonOptions& common);

@@ -44,6 +44,7 @@
 //    Arrivals are not in the traced histogram (ir/response.h), so nothing is counted twice.
 // Reproducible: the same (response, parameters, seed) gives the same samples. Thread-safe (no shared
 // state; FFTW planning is serialised).
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -61,6 +62,12 @@ enum class Phasing { Orthogonal, Coherent };
 
 /// The impulse response, length_s·sample_rate_hz samples. Throws core::InputError for a non-positive or
 /// non-finite sample rate, length, volume or speed of sound, or bands above the Nyquist frequency.
+/// The synthesis seed of listener `listener` in a run seeded `seed`: each listener's noise differs, and a
+/// program given the same seed (diffray ir, the facade, the Python module) gives the same samples.
+inline std::uint64_t listenerSeed(std::uint64_t seed, std::size_t listener) {
+  return seed + 7919ull * static_cast<std::uint64_t>(listener);
+}
+
 std::vector<double> synthesize(const EnergyResponse& response, double sample_rate_hz, double length_s,
                                double volume_m3, double speed_of_sound_m_s, std::uint64_t seed,
                                Phasing phasing = Phasing::Orthogonal);

@@ -32,4 +32,9 @@ double distanceToSurface(const Room& room, const core::Vec3& p);
 /// One line per problem found (empty when none).
 std::vector<std::string> roomWarnings(const Room& room);
 
+/// What IR synthesis will need, checked before a (long) trace rather than after it: the room's top band below
+/// the Nyquist frequency of `sample_rate_hz` (else an InputError naming `rate_field`), an enclosed volume, and
+/// an IR (`length_s`, or the room file's) of at most 2^25 samples.
+void checkSynthesis(const Room& room, double length_s, double sample_rate_hz, const std::string& rate_field);
+
 }  // namespace diffray::room
