@@ -4,11 +4,12 @@
 # is built (PYTHONPATH given). Each block must exit 0; then the files the walkthrough names must exist and
 # hold what they claim: a WAV with one channel per listener, a sidecar with finite T30 at every listener
 # and band, and a comparison CSV with the three models at every listener of two-rooms.
-# Usage: readme_walkthrough.sh DIFFRAY_BINARY REPOSITORY [PYTHONPATH]
+# Usage: readme_walkthrough.sh DIFFRAY_BINARY REPOSITORY [PYTHONPATH PYTHON]
 set -u
 bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
 repo="$(cd "$2" && pwd)"
 pypath="${3:-}"
+python="${4:-python3}"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/build"
@@ -71,7 +72,7 @@ for b in bad:
 sys.exit(1 if bad else 0)
 PY
 if [ -n "$pypath" ] && [ -f example.py ]; then
-  if ! PYTHONPATH="$pypath" python3 example.py >example.out 2>example.err; then
+  if ! PYTHONPATH="$pypath" "$python" example.py >example.out 2>example.err; then
     echo "FAIL: the README's Python example:"; tail -5 example.err | sed 's/^/    /'; fails=$((fails + 1))
   fi
 fi
