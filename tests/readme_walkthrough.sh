@@ -74,6 +74,16 @@ PY
 if [ -n "$pypath" ] && [ -f example.py ]; then
   if ! PYTHONPATH="$pypath" "$python" example.py >example.out 2>example.err; then
     echo "FAIL: the README's Python example:"; tail -5 example.err | sed 's/^/    /'; fails=$((fails + 1))
+  elif [ -f my-room/office-ir.json ]; then
+    # The example is the walkthrough's office (one listener, same seed): its T30 must be the CLI's at "desk".
+    python3 - <<'PY' || fails=$((fails + 1))
+import json, re, sys
+out = open("example.out").read()
+m = re.search(r"T30 at 1 kHz = ([0-9.]+) s", out)
+cli = json.load(open("my-room/office-ir.json"))["listeners"][0]["bands"]["1000"]["t30"]
+if not m or m.group(1) != f"{cli:.2f}":
+    sys.exit(f"FAIL: the Python example printed {out.strip()!r}; the CLI's T30 at desk, 1 kHz, is {cli:.2f} s")
+PY
   fi
 fi
 if [ "$fails" -ne 0 ]; then echo "readme_walkthrough: $fails failure(s)"; exit 1; fi
