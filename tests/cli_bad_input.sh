@@ -138,14 +138,13 @@ if grep -q '"seed": 77' "$tmp/o/s77.json" && grep -q '"seed": 1,' "$tmp/o/s1.jso
    cmp -s "$tmp/o/s77.wav" "$tmp/o/s1b.wav" && ! cmp -s "$tmp/o/s77.wav" "$tmp/o/s1.wav"; then
   passes=$((passes + 1)); else echo "FAIL: ir: the room file's output.seed is not the default seed"; fails=$((fails + 1)); fi
 
-# Run in the room file's folder with the default output, the sidecar (ROOM.json) would be the room file:
-# one line, non-zero exit, the room file untouched and no WAV or CSV written.
+# Run in the room file's folder with the default output: ROOM.ir.wav, .ir.json, .ir.csv, the room file untouched.
 cp "$tmp/in/s1.json" "$tmp/in/keep.json"
 (cd "$tmp/in" && "$bin" ir s1.json --rays 2000 >/dev/null 2>"$tmp/stderr")
 code=$?
-if [ "$code" -ne 0 ] && [ "$code" -lt 128 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "would overwrite" "$tmp/stderr" && cmp -s "$tmp/in/s1.json" "$tmp/in/keep.json" &&
-   ! ls "$tmp/in/s1.wav" "$tmp/in/s1.csv" >/dev/null 2>&1; then passes=$((passes + 1)); else
-  echo "FAIL: ir: the default output overwrote the room file (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+if [ "$code" -eq 0 ] && cmp -s "$tmp/in/s1.json" "$tmp/in/keep.json" &&
+   [ -s "$tmp/in/s1.ir.wav" ] && [ -s "$tmp/in/s1.ir.json" ] && [ -s "$tmp/in/s1.ir.csv" ]; then passes=$((passes + 1)); else
+  echo "FAIL: ir: the default output beside the room file (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 
 # diffray compare: bad input gives one line and leaves no CSV or PNG behind.
 
@@ -161,7 +160,23 @@ expect_input_kept() {  # expect_input_kept DESCRIPTION KEPT_FILE ARGS...
      cmp -s "$tmp/lib/$kept" "$tmp/lib.keep/$kept"; then passes=$((passes + 1)); else
     echo "FAIL: $what (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 }
-expect_input_kept "ir: -o materials.wav would replace the library" materials.json ir shoebox.json -o materials.wav --rays 2000
+# ir's outputs beside the scene: the default names carry ".ir" (shoebox.ir.wav, .ir.json, .ir.csv), and with
+# -o X.wav a sidecar that would be an input (X.json the scene or the library) becomes X.ir.json, with a note.
+expect_ir_beside() {  # expect_ir_beside DESCRIPTION "FILES WRITTEN" ARGS...
+  local what="$1" files="$2"; shift 2
+  (cd "$tmp/lib" && "$bin" "$@" >/dev/null 2>"$tmp/stderr")
+  local code=$? f ok=1
+  for f in $files; do [ -s "$tmp/lib/$f" ] || ok=0; done
+  for f in shoebox.json materials.json; do cmp -s "$tmp/lib/$f" "$tmp/lib.keep/$f" || ok=0; done
+  if [ "$code" -eq 0 ] && [ "$ok" -eq 1 ]; then passes=$((passes + 1)); else
+    echo "FAIL: $what (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+  (cd "$tmp/lib" && rm -f $files)
+}
+expect_ir_beside "ir: default names beside the scene" "shoebox.ir.wav shoebox.ir.json shoebox.ir.csv" ir shoebox.json --rays 2000
+expect_ir_beside "ir: -o shoebox.wav beside shoebox.json" "shoebox.wav shoebox.ir.json shoebox.ir.csv" ir shoebox.json -o shoebox.wav --rays 2000
+grep -q "note: shoebox.json is an input" "$tmp/stderr" && passes=$((passes + 1)) ||
+  { echo "FAIL: ir -o shoebox.wav: no note on the sidecar's name"; fails=$((fails + 1)); }
+expect_ir_beside "ir: -o materials.wav keeps the library" "materials.wav materials.ir.json materials.ir.csv" ir shoebox.json -o materials.wav --rays 2000
 expect_input_kept "compare: --csv onto the scene"                  barrier.json compare barrier.json --models utd --csv barrier.json
 expect_input_kept "wdf: --csv onto the profile"                    p.csv wdf profile --profile p.csv --csv p.csv
 

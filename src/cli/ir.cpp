@@ -81,7 +81,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       "ir", "Trace a room (rooms/*.json) to an impulse response (WAV + JSON sidecar + CSV histograms) and print "
             "its ISO 3382 metrics.");
   sub->add_option("room", opts->room_file, "scene file (see rooms/README.md)")->check(inputPathValidator())->required();
-  sub->add_option("-o,--output", opts->out, "output WAV (default: the room file's name with .wav, here)")
+  sub->add_option("-o,--output", opts->out, "output WAV; its sidecar and histograms take its name with .json and .csv (default: ROOM.ir.wav, here, ROOM the room file's name; a sidecar that would replace an input, as -o ROOM.wav beside ROOM.json, is named OUT.ir.json and OUT.ir.csv)")
       ->check(outputPathValidator());
   addRaysOption(sub, opts->rays, "rays per source (default: the room file's output.rays; 1e6 is accepted)");
   CLI::Option* seed_option =
@@ -118,14 +118,23 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(opts->room_file, &warnings);
     if (seed_option->count() == 0) common.seed = room.output.seed;  // the file's seed unless --seed is given
+    // The default names carry ".ir" so that they never take the scene's own name (`cd rooms && diffray ir
+    // shoebox.json` writes shoebox.ir.wav, .ir.json, .ir.csv beside shoebox.json). With -o OUT.wav the sidecar
+    // and histograms are OUT.json and OUT.csv, unless one of those is a file the room was read from (-o
+    // classroom.wav beside classroom.json): then both take OUT.ir.json and OUT.ir.csv, and a note says so.
     const std::string wav = opts->out.empty()
-                                ? std::filesystem::path(opts->room_file).stem().string() + ".wav"
+                                ? std::filesystem::path(opts->room_file).stem().string() + ".ir.wav"
                                 : opts->out;
     checkOutputFile(wav, ".wav");
-    // No output may replace a file the room was read from: the sidecar is OUT.json, so run in the room
-    // file's folder with the default output it would replace the room file itself (`cd rooms && diffray ir
-    // shoebox.json` once destroyed shoebox.json), and `-o materials.wav` the material library.
-    checkOutputFiles({wav, withExtension(wav, ".json"), withExtension(wav, ".csv"), opts->plot}, room.input_files);
+    std::string side_json = withExtension(wav, ".json"), side_csv = withExtension(wav, ".csv");
+    if (isAnyOf(side_json, room.input_files) || isAnyOf(side_csv, room.input_files)) {
+      side_json = withExtension(wav, ".ir.json");
+      side_csv = withExtension(wav, ".ir.csv");
+      std::cerr << "diffray: note: " << withExtension(wav, ".json") << " is an input of this room, so the sidecar is "
+                << side_json << " and the histograms " << side_csv << "\n";
+    }
+    // No output may replace a file the room was read from (-o materials.wav: the material library).
+    checkOutputFiles({wav, side_json, side_csv, opts->plot}, room.input_files);
     checkPlotOption("--plot", opts->plot);
     room::checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
@@ -254,18 +263,18 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       written.write(opts->plot, [&](const std::string& f) { writeDecayPlot(f, names, sim.listeners, plot_flags); });
     }
     written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
-    written.write(withExtension(wav, ".csv"), [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
+    written.write(side_csv, [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    written.write(withExtension(wav, ".json"), [&](const std::string& f) {
+    written.write(side_json, [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
     });
     written.commit();
     if (common.json) {
       std::cout << jsonText(side, 2) << std::endl;
     } else {
-      std::printf("%s: %llu rays, %zu image sources, %.2f s IR, traced in %.2f s -> %s (+ .json, .csv)\n",
+      std::printf("%s: %llu rays, %zu image sources, %.2f s IR, traced in %.2f s -> %s, %s, %s\n",
                   room.name.c_str(), static_cast<unsigned long long>(sim.rays), sim.image_sources, sim.length_s,
-                  sim.trace_seconds, wav.c_str());
+                  sim.trace_seconds, wav.c_str(), side_json.c_str(), side_csv.c_str());
       std::cout << table;
     }
     return 0;

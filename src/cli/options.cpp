@@ -193,8 +193,7 @@ void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<s
     if (path.empty()) continue;
     checkOutputFile(path, "");
     for (const std::string& input : inputs)
-      if (!input.empty() && std::filesystem::equivalent(path, input, ec))
-        throw core::InputError(path, "would overwrite the input " + input);
+      if (isAnyOf(path, {input})) throw core::InputError(path, "would overwrite the input " + input);
     // Two outputs in one file (validate or compare with --csv out.png --plot out.png): one would silently
     // replace the other. The files need not exist yet (weakly_canonical).
     const std::filesystem::path p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
@@ -207,6 +206,13 @@ void checkOutputFiles(const std::vector<std::string>& paths, const std::vector<s
 std::string reasonOf(const core::InputError& e) {
   const std::string what = e.what();
   return e.where().empty() ? what : what.substr(e.where().size() + 2);
+}
+
+bool isAnyOf(const std::string& path, const std::vector<std::string>& files) {
+  std::error_code ec;
+  for (const std::string& f : files)
+    if (!f.empty() && std::filesystem::equivalent(path, f, ec)) return true;
+  return false;
 }
 
 std::string withExtension(const std::string& path, const std::string& ext) {

@@ -102,6 +102,8 @@ using core::OutputFiles;
 std::string reasonOf(const core::InputError& e);
 
 /// `path` with its extension replaced by `ext` (".json").
+/// Whether `path` names the same file as one of `files` (files that do not exist match nothing).
+bool isAnyOf(const std::string& path, const std::vector<std::string>& files);
 std::string withExtension(const std::string& path, const std::string& ext);
 
 Runner addValidateCommand(CLI::App& app, CommonOptions& common);
