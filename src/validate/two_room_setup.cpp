@@ -5,6 +5,7 @@
 #include <map>
 
 #include "diffray/core/error.h"
+#include "diffray/room/json_fields.h"
 #include "diffray/room/occluder_file.h"
 
 namespace diffray::validate {
@@ -118,11 +119,12 @@ TwoRoomSpec twoRoomFromParams(const Params& p, const TwoRoomSpec& base) {
   const int lat = 1 - s.axis;
   const double wall_lo = std::max(L.a.lo[lat], L.b.lo[lat]), wall_hi = std::min(L.a.hi[lat], L.b.hi[lat]);
   if (!(L.door.lo[lat] > wall_lo && L.door.hi[lat] < wall_hi && s.door_height_m < std::min(s.dims_a_m[2], s.dims_b_m[2])))
-    throw core::InputError("--door-position", "the door (" + std::to_string(L.door.lo[lat]) + " to " +
-                                                  std::to_string(L.door.hi[lat]) + " m along the partition, " +
-                                                  std::to_string(s.door_height_m) +
+    throw core::InputError("--door-position", "the door (" + room::formatNumber(L.door.lo[lat]) + " to " +
+                                                  room::formatNumber(L.door.hi[lat]) + " m along the partition, " +
+                                                  room::formatNumber(s.door_height_m) +
                                                   " m high) does not fit in the wall the two rooms share (" +
-                                                  std::to_string(wall_lo) + " to " + std::to_string(wall_hi) + " m, below both ceilings)");
+                                                  room::formatNumber(wall_lo) + " to " + room::formatNumber(wall_hi) +
+                                                  " m, below both ceilings)");
   if (!L.a.contains(s.source_m) && !L.b.contains(s.source_m)) throw core::InputError("--source", "must be inside room A or B");
   for (const auto& l : s.listeners_m)
     if (!L.a.holdsSphere(l, s.radius_m) && !L.b.holdsSphere(l, s.radius_m))
