@@ -15,6 +15,8 @@ expect_error "half-plane source at 1e30 m"    validate half-plane --source-dista
 expect_error "door-rs at 900 kHz"     validate door-rs --freq 9e5 --rays 1000 "$csv"
 expect_error "infinite distance"      validate slit-fraunhofer --distance inf --rays 1000 "$csv"
 expect_error "negative frequency"     validate door-rs --freq 125,-250 --rays 1000 "$csv"
+expect_error "door past the shared wall"  validate two-rooms-wave --door-position 3.5 --rays 1000 "$csv"
+expect_error "listener outside the rooms" validate classroom-wave --listeners 20,1,1 --rays 1000 "$csv"
 expect_error "spacing below width"    validate double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"
 expect_error "unknown case"           validate no-such-case "$csv"
 expect_error "image: spacing below width" validate image-double-slit --width 1e-4 --spacing 5e-5 --rays 1000 "$csv"

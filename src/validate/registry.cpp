@@ -26,6 +26,8 @@ CaseInfo doorRoomCase();
 CaseInfo imageDoubleSlitCase();
 CaseInfo imageCdCase();
 CaseInfo imageLensPsfCase();
+CaseInfo twoRoomsWaveCase();
+CaseInfo classroomWaveCase();
 
 const std::vector<CaseInfo>& cases() {
   static const std::vector<CaseInfo> all{slitFraunhoferCase(), doubleSlitCase(), rectApertureCase(),
@@ -33,7 +35,7 @@ const std::vector<CaseInfo>& cases() {
                                          freeFieldCase(),      shoeboxIsmCase(), specularDecayCase(),
                                          diffuseEyringCase(),  decayMetricsCase(), halfPlaneCase(), barrierCase(), doorRoomCase(),
                                          imageDoubleSlitCase(), imageCdCase(),
-                                         imageLensPsfCase()};
+                                         imageLensPsfCase(), twoRoomsWaveCase(), classroomWaveCase()};
   return all;
 }
 
