@@ -174,6 +174,19 @@ expect_signal_error "unwritable path"       sweep -o "$tmp/no/such/dir/sig.wav"
 expect_signal_error "output not a .wav"     sweep -o "$tmp/sig.csv"
 expect_signal_error "speed out of range"    speech -o "$tmp/sig.wav" --speed 5
 expect_signal_error "unknown voice"         speech -o "$tmp/sig.wav" --voice nosuchvoice
+# A WAV cut short (a copy interrupted): read, with one warning naming the file and what is missing.
+"$bin" signal clicks -o "$tmp/whole.wav" --duration 2 >/dev/null 2>&1
+head -c 200000 "$tmp/whole.wav" >"$tmp/cut.wav"
+if "$bin" metrics "$tmp/cut.wav" >/dev/null 2>"$tmp/stderr" && [ "$(grep -c "warning: .*cut.wav: the file is cut short: its header declares 384000 bytes of samples, it holds 199896" "$tmp/stderr")" -eq 1 ] &&
+   "$bin" metrics "$tmp/whole.wav" >/dev/null 2>"$tmp/stderr.whole" && ! grep -q "cut short" "$tmp/stderr.whole"; then
+  passes=$((passes + 1)); else echo "FAIL: metrics on a truncated WAV: no warning (or one on the whole file)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp/whole.wav" "$tmp/cut.wav"
+expect_clean "signal: voice vulcan (espeak-ng would fall back to English)" "sig.*" "no voice 'vulcan'" signal speech -o "$tmp/sig.wav" --voice vulcan
+for v in en-us en+f3 de gmw/en klingon; do  # languages, a variant, a file, a voice name (espeak-ng's Klingon)
+  if "$bin" signal speech -o "$tmp/voice.wav" --voice "$v" --text "one" >/dev/null 2>"$tmp/stderr" && [ -s "$tmp/voice.wav" ]; then
+    passes=$((passes + 1)); else echo "FAIL: signal speech --voice $v refused"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+  rm -f "$tmp/voice.wav"
+done
 expect_signal_error "empty text"            speech -o "$tmp/sig.wav" --text " "
 # Beyond one WAV file (4 GiB of float32): refused before the samples are made (5.5 GB here).
 expect_clean "signal: 3600 s at 384 kHz" "sig.*" "4 GiB" signal clicks -o "$tmp/sig.wav" --rate 384000 --duration 3600

@@ -10,7 +10,9 @@
 #include <cerrno>
 #include <cmath>
 #include <filesystem>
+#include <cctype>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "diffray/audio/wav.h"
@@ -41,15 +43,16 @@ struct TempDir {
   }
 };
 
-/// Runs `argv` (argv[0] looked up on the PATH) with stdout and stderr to /dev/null; returns its exit code,
-/// 127 when it could not be started, 128 + signal when killed.
-int runQuietly(const std::vector<std::string>& args) {
+/// Runs `argv` (argv[0] looked up on the PATH) with stdout to `stdout_path` (/dev/null when empty) and stderr
+/// to /dev/null; returns its exit code, 127 when it could not be started, 128 + signal when killed.
+int runQuietly(const std::vector<std::string>& args, const std::string& stdout_path = "") {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.empty() ? "/dev/null" : stdout_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
   const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
@@ -60,6 +63,32 @@ int runQuietly(const std::vector<std::string>& args) {
     if (errno != EINTR) return 127;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 127;
+}
+
+/// Whether espeak-ng knows `voice`: its part before any '+variant' is a language, voice name or voice file of
+/// `espeak-ng --voices` (a table: Pty, Language, Age/Gender, VoiceName, File, then "(lang pty)" pairs).
+/// espeak-ng itself falls back to its default voice for an unknown name and exits 0, so it cannot tell.
+bool espeakKnowsVoice(const std::string& voice, const std::string& folder) {
+  const std::string listing = folder + "/voices.txt";
+  if (runQuietly({kProgram, "--voices"}, listing) != 0) return true;  // cannot list: leave it to espeak-ng
+  const std::string name = voice.substr(0, voice.find('+'));
+  const auto lower = [](std::string t) {
+    for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return t;
+  };
+  std::ifstream in(listing);
+  std::string line;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    for (int k = 0; fields >> field; ++k) {
+      if (k == 0 || k == 2) continue;  // priority, age/gender
+      if (!field.empty() && field.front() == '(') field.erase(0, 1);
+      if (lower(field) == lower(name)) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -78,6 +107,8 @@ std::vector<float> synthesizeSpeech(const SpeechSpec& spec) {
     throw core::InputError("speech", "needs espeak-ng; as root: apt-get install espeak-ng");
 
   TempDir dir;
+  if (!espeakKnowsVoice(spec.voice, dir.path))
+    throw core::InputError("--voice", "espeak-ng has no voice '" + spec.voice + "' (`espeak-ng --voices` lists them)");
   const std::string text_path = dir.path + "/text.txt", wav_path = dir.path + "/speech.wav";
   {
     std::ofstream text(text_path);

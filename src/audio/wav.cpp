@@ -5,6 +5,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <memory>
@@ -81,6 +82,27 @@ std::vector<double> AudioBuffer::channel(int c) const {
   return out;
 }
 
+namespace {
+/// libsndfile reads a file cut short (a copy or download interrupted) without an error: it notes in its log
+/// "data : DECLARED (should be HELD)" and reads the frames that are there. This turns that note into one line.
+std::string truncationWarning(SNDFILE* file, const std::string& path) {
+  char log[8192] = {};
+  sf_command(file, SFC_GET_LOG_INFO, log, sizeof(log) - 1);
+  const std::string text(log);
+  std::size_t at = text.find("\ndata");
+  if (at == std::string::npos) return "";
+  const std::size_t end = text.find('\n', at + 1);
+  const std::string line = text.substr(at + 1, end == std::string::npos ? std::string::npos : end - at - 1);
+  const std::size_t colon = line.find(':'), should = line.find("(should be ");
+  if (colon == std::string::npos || should == std::string::npos) return "";
+  const long long declared = std::atoll(line.c_str() + colon + 1);
+  const long long held = std::atoll(line.c_str() + should + 11);
+  if (!(held < declared)) return "";
+  return path + ": the file is cut short: its header declares " + std::to_string(declared) +
+         " bytes of samples, it holds " + std::to_string(held) + " (only those are read)";
+}
+}  // namespace
+
 AudioBuffer readAudio(const std::string& path) {
   SF_INFO info;
   std::memset(&info, 0, sizeof(info));
@@ -95,6 +117,7 @@ AudioBuffer readAudio(const std::string& path) {
   AudioBuffer out;
   out.sample_rate_hz = info.samplerate;
   out.channels = info.channels;
+  out.warning = truncationWarning(file.get(), path);
   out.samples.resize(static_cast<size_t>(info.frames) * static_cast<size_t>(info.channels));
   const sf_count_t got = sf_readf_double(file.get(), out.samples.data(), info.frames);
   if (sf_error(file.get()) != SF_ERR_NO_ERROR)
@@ -175,6 +198,7 @@ AudioReader::AudioReader(const std::string& path) : path_(path) {
     checkSampleRate(path, info.samplerate);
   }
   file_ = file;
+  warning_ = truncationWarning(file, path);
   sample_rate_hz_ = info.samplerate;
   channels_ = info.channels;
   frames_ = static_cast<long>(info.frames);

@@ -158,7 +158,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
       ->check(inputPathValidator());
   sub->add_option("--in", o->in, "dry signal (the IR is resampled to its rate if they differ)")
       ->check(inputPathValidator());
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)")
+  sub->add_option("-o,--output", o->out, "output .wav (32-bit float), input + IR - 1 frames long (or --play)")
       ->check(outputPathValidator());
   sub->add_option("--gain", o->gain_db, "gain in dB applied to the output (-120 - 120)")
       ->check(gainDbValidator())
@@ -194,6 +194,8 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     checkOutputPath(*o);
     audio::AudioReader dry(o->in);
     const audio::AudioBuffer ir = audio::readAudio(o->ir);
+    warnOf(dry.warning());
+    warnOf(ir.warning);
     const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample);
     const long ir_frames = static_cast<long>(ir_channels.front().size());
     const int fft_block = blockFor(ir_frames);

@@ -14,6 +14,7 @@
 #include "diffray/audio/playback.h"
 #include "diffray/audio/portaudio_output.h"
 #include "diffray/audio/wav.h"
+#include "diffray/cli/commands.h"
 #include "diffray/cli/play.h"
 #include "diffray/core/error.h"
 
@@ -67,6 +68,8 @@ int playAuralization(const PlayOptions& o) {
   requireBlockFrames(o.block_frames);
   audio::AudioReader dry(o.in);
   const audio::AudioBuffer ir = audio::readAudio(o.ir);
+  warnOf(dry.warning());
+  warnOf(ir.warning);
   const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);
   audio::PortAudioSession session;
   const audio::OutputDevice device = session.chooseOutputDevice(o.device);

@@ -180,6 +180,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       }
     }
     audio::AudioReader reader(opts->in);
+    warnOf(reader.warning());
     const double fs = reader.sampleRateHz();
     // The IRs are synthesized at the dry signal's rate when the room's bands fit below its Nyquist frequency,
     // else at the room's own rate and resampled (as filters) to the dry signal's; either way with the room

@@ -89,6 +89,7 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
   return [o, &common]() {
     checkAnalysisMemory(o->file, o->bands);
     const audio::AudioBuffer audio = audio::readAudio(o->file);
+    warnOf(audio.warning);
     if (o->channel < 1 || o->channel > audio.channels)
       throw core::InputError("--channel", "must lie between 1 and " + std::to_string(audio.channels) + " (" +
                                               o->file + " has " + std::to_string(audio.channels) + " channel" +

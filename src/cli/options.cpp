@@ -208,6 +208,10 @@ std::string reasonOf(const core::InputError& e) {
   return e.where().empty() ? what : what.substr(e.where().size() + 2);
 }
 
+void warnOf(const std::string& warning) {
+  if (!warning.empty()) std::cerr << "diffray: warning: " << core::oneLine(warning) << "\n";
+}
+
 bool isAnyOf(const std::string& path, const std::vector<std::string>& files) {
   std::error_code ec;
   for (const std::string& f : files)

@@ -100,7 +100,7 @@ Runner addSignalCommand(CLI::App& app, CommonOptions& /*common*/) {
       "signal", "Make a dry test signal locally (mono 32-bit float WAV): an exponential sine sweep, a click "
                 "train, or speech from espeak-ng.");
   sub->add_option("kind", o->kind, "sweep, clicks or speech")->required()->check(CLI::IsMember({"sweep", "clicks", "speech"}));
-  sub->add_option("-o,--out", o->out, "output .wav (32-bit float, mono)")->check(outputPathValidator())->required();
+  sub->add_option("-o,--output", o->out, "output .wav (32-bit float, mono)")->check(outputPathValidator())->required();
   sub->add_option("--rate", o->rate_hz, "sample rate in Hz (8000 - 384000)")
       ->transform(wholeNumberValidator())
       ->capture_default_str();

@@ -86,7 +86,7 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
       "spectrogram", "Draw the spectrogram of an audio file (Hann-windowed FFT, dB, log frequency axis) as a PNG "
                      "(needs gnuplot).");
   sub->add_option("file", o->in, "audio file (WAV, FLAC, AIFF, ...)")->check(inputPathValidator())->required();
-  sub->add_option("-o,--out", o->out, "output .png")->check(outputPathValidator())->required();
+  sub->add_option("-o,--output", o->out, "output .png")->check(outputPathValidator())->required();
   sub->add_option("--window", o->window, "FFT frame length in samples (even, 8 - 1048576)")
       ->transform(wholeNumberValidator())
       ->capture_default_str();
@@ -106,6 +106,7 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
     if (o->hop < 0) throw core::InputError("--hop", "must be at least 1, got " + std::to_string(o->hop));
     core::requirePositive("--range", o->range_db);
     audio::AudioReader reader(o->in);
+    warnOf(reader.warning());
     SpectrogramPlotOptions plot;
     // The frequency axis runs from min_freq_hz up to fs/2: a file sampled at 2 × min_freq_hz or less has
     // nothing to draw. Its sample rate is the cause, not -o (where writeSpectrogramPlot would put it).

@@ -20,6 +20,7 @@ struct AudioBuffer {
   double sample_rate_hz = 48000.0;
   int channels = 1;
   std::vector<double> samples;  ///< interleaved: frame f, channel c at samples[f * channels + c]
+  std::string warning;  ///< from readAudio: why the file may not be what it claims (truncated), or empty
 
   long frames() const { return channels > 0 ? static_cast<long>(samples.size()) / channels : 0; }
   /// One channel (0-based) as its own vector.
@@ -61,6 +62,9 @@ class AudioReader {
   /// number read, 0 at the end. Throws core::InputError naming the file for a read error or a NaN/Inf
   /// sample (the frame and channel named).
   long read(float* out, long frames);
+  /// Why the file may not be what its header claims (a file cut short: fewer sample bytes than declared), or
+  /// empty. The frames that are there are read; the caller decides whether to warn.
+  const std::string& warning() const { return warning_; }
 
  private:
   std::string path_;
@@ -69,6 +73,7 @@ class AudioReader {
   int channels_ = 0;
   long frames_ = 0;
   long position_ = 0;  ///< frames read so far
+  std::string warning_;
 };
 
 /// Writes a 32-bit float WAV block by block into a temporary file beside `path`, renamed to `path` by

@@ -101,6 +101,9 @@ using core::OutputFiles;
 /// instead of an internal name (a temporary file, "resample").
 std::string reasonOf(const core::InputError& e);
 
+/// Prints "diffray: warning: W" on stderr (one line) unless `warning` is empty.
+void warnOf(const std::string& warning);
+
 /// `path` with its extension replaced by `ext` (".json").
 /// Whether `path` names the same file as one of `files` (files that do not exist match nothing).
 bool isAnyOf(const std::string& path, const std::vector<std::string>& files);
