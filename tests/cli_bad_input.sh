@@ -140,6 +140,19 @@ if grep -q '"seed": 77' "$tmp/o/s77.json" && grep -q '"seed": 1,' "$tmp/o/s1.jso
    cmp -s "$tmp/o/s77.wav" "$tmp/o/s1b.wav" && ! cmp -s "$tmp/o/s77.wav" "$tmp/o/s1.wav"; then
   passes=$((passes + 1)); else echo "FAIL: ir: the room file's output.seed is not the default seed"; fails=$((fails + 1)); fi
 
+# ir prints the room's Sabine and Eyring T beside the traced T30, in the table and the sidecar, and notes the
+# bands where traced T30 and Eyring differ by more than 1.5x (the shoebox: hard walls, absorbing floor and
+# ceiling, a field far from diffuse: traced T30 about 6x Eyring's at 1 kHz).
+"$bin" ir "$rooms/shoebox.json" --rays 20000 -o "$tmp/stat.wav" >"$tmp/stat.txt" 2>"$tmp/stderr"
+if grep -q "Sabine T s  Eyring T s  traced T30 s" "$tmp/stat.txt" && grep -q "note: the traced T30 differs from Eyring's by more than a factor 1.5 (.*1000 Hz" "$tmp/stderr" &&
+   python3 -c "
+import json, sys
+s = json.load(open('$tmp/stat.json'))['statistical_reverberation']
+b = s['bands']['1000']
+sys.exit(0 if abs(s['volume_m3'] - 210) < 1e-6 and b['eyring_s'] < b['sabine_s'] < b['traced_t30_s'] and 'note' in s else 1)"; then
+  passes=$((passes + 1)); else echo "FAIL: ir: Sabine/Eyring beside the traced T30"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp"/stat.*
+
 # Run in the room file's folder with the default output: ROOM.ir.wav, .ir.json, .ir.csv, the room file untouched.
 cp "$tmp/in/s1.json" "$tmp/in/keep.json"
 (cd "$tmp/in" && "$bin" ir s1.json --rays 2000 >/dev/null 2>"$tmp/stderr")

@@ -103,7 +103,7 @@ std::string truncationWarning(SNDFILE* file, const std::string& path) {
 }
 }  // namespace
 
-AudioBuffer readAudio(const std::string& path) {
+AudioBuffer readAudio(const std::string& path, std::string* warning) {
   SF_INFO info;
   std::memset(&info, 0, sizeof(info));
   SndfilePtr file(sf_open(path.c_str(), SFM_READ, &info));
@@ -117,7 +117,7 @@ AudioBuffer readAudio(const std::string& path) {
   AudioBuffer out;
   out.sample_rate_hz = info.samplerate;
   out.channels = info.channels;
-  out.warning = truncationWarning(file.get(), path);
+  if (warning != nullptr) *warning = truncationWarning(file.get(), path);
   out.samples.resize(static_cast<size_t>(info.frames) * static_cast<size_t>(info.channels));
   const sf_count_t got = sf_readf_double(file.get(), out.samples.data(), info.frames);
   if (sf_error(file.get()) != SF_ERR_NO_ERROR)

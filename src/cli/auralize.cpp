@@ -193,9 +193,10 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     core::requireFinite("--gain", o->gain_db);
     checkOutputPath(*o);
     audio::AudioReader dry(o->in);
-    const audio::AudioBuffer ir = audio::readAudio(o->ir);
+    std::string cut;
+    const audio::AudioBuffer ir = audio::readAudio(o->ir, &cut);
     warnOf(dry.warning());
-    warnOf(ir.warning);
+    warnOf(cut);
     const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample);
     const long ir_frames = static_cast<long>(ir_channels.front().size());
     const int fft_block = blockFor(ir_frames);

@@ -67,9 +67,10 @@ int playAuralization(const PlayOptions& o) {
   core::requireFinite("--gain", o.gain_db);
   requireBlockFrames(o.block_frames);
   audio::AudioReader dry(o.in);
-  const audio::AudioBuffer ir = audio::readAudio(o.ir);
+  std::string cut;
+  const audio::AudioBuffer ir = audio::readAudio(o.ir, &cut);
   warnOf(dry.warning());
-  warnOf(ir.warning);
+  warnOf(cut);
   const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);
   audio::PortAudioSession session;
   const audio::OutputDevice device = session.chooseOutputDevice(o.device);

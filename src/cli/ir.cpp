@@ -23,6 +23,7 @@
 #include "diffray/ir/synthesis.h"
 #include "diffray/ir/uncertainty.h"
 #include "diffray/room/checks.h"
+#include "diffray/room/reverberation.h"
 #include "diffray/room/scene_file.h"
 #include "diffray/transport/room_simulation.h"
 
@@ -71,6 +72,49 @@ void writeHistogramCsv(const std::string& path, const room::Room& room, const tr
       }
     }
   });
+}
+
+/// The room's Sabine and Eyring T beside the traced T30 (mean over the listeners that have one), per band,
+/// as a table, and the bands where the traced T30 and Eyring's differ by more than a factor 1.5 as notes: a
+/// field far from diffuse (absorption on a few surfaces, little scattering, coupled volumes) decays unlike
+/// the statistical formulas, and the user should know which case the room is before trusting either.
+struct Statistics {
+  std::string table;
+  std::vector<std::string> notes;
+  nlohmann::ordered_json json;
+};
+Statistics statisticsAgainstTraced(const room::Room& room, const std::vector<std::vector<double>>& traced_t30) {
+  const room::StatisticalReverberation st = room::statisticalReverberation(room);
+  Statistics out;
+  out.json = {{"volume_m3", st.volume_m3}, {"surface_m2", st.surface_m2}, {"bands", nlohmann::ordered_json::object()}};
+  if (!(st.volume_m3 > 0)) return out;
+  char line[160];
+  std::snprintf(line, sizeof line, "room (statistical, diffuse field): V = %.1f m3, S = %.1f m2\n", st.volume_m3,
+                st.surface_m2);
+  out.table = line;
+  out.table += "band Hz  mean alpha  Sabine T s  Eyring T s  traced T30 s  traced/Eyring\n";
+  for (int b = 0; b < room.bands.size(); ++b) {
+    double sum = 0;
+    int n = 0;
+    for (const auto& l : traced_t30)
+      if (std::isfinite(l[static_cast<std::size_t>(b)])) sum += l[static_cast<std::size_t>(b)], ++n;
+    const double traced = n ? sum / n : std::nan("");
+    const double eyring = st.eyring_s[static_cast<std::size_t>(b)], ratio = traced / eyring;
+    std::snprintf(line, sizeof line, "%7s  %10.3f  %10.3f  %10.3f  %12.3f  %13.2f\n", room.bands.label(b).c_str(),
+                  st.mean_alpha[static_cast<std::size_t>(b)], st.sabine_s[static_cast<std::size_t>(b)], eyring, traced, ratio);
+    out.table += line;
+    const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+    out.json["bands"][room.bands.label(b)] = {
+        {"mean_alpha", finite(st.mean_alpha[static_cast<std::size_t>(b)])},
+        {"sabine_s", finite(st.sabine_s[static_cast<std::size_t>(b)])},
+        {"eyring_s", finite(eyring)},
+        {"traced_t30_s", finite(traced)}};
+    if (std::isfinite(ratio) && (ratio > 1.5 || ratio < 1 / 1.5)) {
+      std::snprintf(line, sizeof line, "%s Hz %.1fx", room.bands.label(b).c_str(), ratio);
+      out.notes.push_back(line);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -167,6 +211,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     std::string table;
     std::vector<std::string> metric_warnings;  // noisy or negative bands, one per listener and band
     std::vector<std::vector<std::string>> plot_flags;  // [listener][band]: the histogram's flags
+    std::vector<std::vector<double>> traced_t30;       // [listener][band], from the histograms
     for (std::size_t l = 0; l < room.listeners.size(); ++l) {
       const auto& resp = sim.listeners[l];
       channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
@@ -177,6 +222,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       auto from_wav = ir::metricsFromSignal(channels.back(), room.output.sample_rate_hz, room.bands);
       // Standard errors (jackknife over the ray batches) and marks; the WAV's figures get the histogram's
       // standard errors, and a band whose energy sums negative no figure from either.
+      traced_t30.emplace_back();
+      for (const auto& m : from_hist) traced_t30.back().push_back(m.t30);
       const auto jack = ir::jackknifeMetrics(resp);
       const auto marks_hist = ir::markMetrics(from_hist, jack);
       const auto marks_wav = ir::markMetrics(from_wav, jack, &marks_hist);
@@ -203,6 +250,18 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                ir::metricsTable(room.bands, from_hist, &marks_hist);
       table += "listener " + li.name + " (from the synthesized WAV; standard errors and flags from the histogram):\n" +
                ir::metricsTable(room.bands, from_wav, &marks_wav);
+    }
+    Statistics stats = statisticsAgainstTraced(room, traced_t30);
+    table += stats.table;
+    if (!stats.notes.empty()) {
+      std::string bands_text;
+      for (const std::string& n : stats.notes) bands_text += (bands_text.empty() ? "" : ", ") + n;
+      const std::string note = "the traced T30 differs from Eyring's by more than a factor 1.5 (" + bands_text +
+                               "): the field is not diffuse (absorption on a few surfaces, little scattering, or "
+                               "coupled volumes); if the real room has furniture or people, model them or raise "
+                               "the surfaces' scattering (rooms/README.md)";
+      std::cerr << "diffray: note: " << core::oneLine(note) << "\n";
+      stats.json["note"] = note;
     }
     const long frames = channels.empty() ? 0 : static_cast<long>(channels[0].size());
     buffer.samples.assign(static_cast<std::size_t>(frames) * buffer.channels, 0.0);
@@ -251,6 +310,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
           {"queries_per_ray", sim.rays ? static_cast<double>(sim.segments) / static_cast<double>(sim.rays) : 0.0}}},
         {"timing_s", {{"trace", sim.trace_seconds}, {"image_sources", sim.ism_seconds}, {"synthesis_and_metrics", synth_s}}},
         {"warnings", all_warnings},
+        {"statistical_reverberation", stats.json},
         {"listeners", listeners},
         {"bands", listeners.at(0).at("bands")}};
 

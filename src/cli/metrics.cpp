@@ -88,8 +88,9 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
       ->capture_default_str();
   return [o, &common]() {
     checkAnalysisMemory(o->file, o->bands);
-    const audio::AudioBuffer audio = audio::readAudio(o->file);
-    warnOf(audio.warning);
+    std::string cut;
+    const audio::AudioBuffer audio = audio::readAudio(o->file, &cut);
+    warnOf(cut);
     if (o->channel < 1 || o->channel > audio.channels)
       throw core::InputError("--channel", "must lie between 1 and " + std::to_string(audio.channels) + " (" +
                                               o->file + " has " + std::to_string(audio.channels) + " channel" +

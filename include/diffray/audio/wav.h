@@ -20,7 +20,6 @@ struct AudioBuffer {
   double sample_rate_hz = 48000.0;
   int channels = 1;
   std::vector<double> samples;  ///< interleaved: frame f, channel c at samples[f * channels + c]
-  std::string warning;  ///< from readAudio: why the file may not be what it claims (truncated), or empty
 
   long frames() const { return channels > 0 ? static_cast<long>(samples.size()) / channels : 0; }
   /// One channel (0-based) as its own vector.
@@ -29,7 +28,9 @@ struct AudioBuffer {
 
 /// Reads a whole audio file. Throws core::InputError naming `path` with libsndfile's reason for a missing
 /// or unreadable file or an unknown format, and for an empty file (zero frames) or NaN/Inf samples.
-AudioBuffer readAudio(const std::string& path);
+/// `warning`, when given, receives why the file may not be what its header claims (cut short: fewer sample
+/// bytes than declared; the frames that are there are read), or "".
+AudioBuffer readAudio(const std::string& path, std::string* warning = nullptr);
 
 /// Writes `audio` as a 32-bit float WAV, atomically. Throws core::InputError naming `path` for NaN/Inf
 /// samples or samples beyond the float range (checked before anything is written), for a sample rate or
