@@ -214,7 +214,7 @@ int runRoomMode(const CompareCliOptions& o, CommonOptions& common, bool seed_giv
   OutputFiles written;  // replaced together: a later failure leaves the previous files
   if (!o.plot.empty()) written.write(o.plot, [&](const std::string& f) { writeRoomComparePlot(f, room, c); });
   if (!o.csv.empty()) written.write(o.csv, [&](const std::string& f) { writeRoomCompareCsv(f, room, c); });
-  written.commit();
+  commitAndAnnounce(written);
   if (common.json) {
     std::cout << roomComparisonJsonLines(room, c);
     std::cout.flush();
@@ -319,7 +319,7 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     OutputFiles written;  // replaced together: a later failure leaves the previous files
     if (!o->plot.empty()) written.write(o->plot, [&](const std::string& f) { writeComparePlot(f, room, c); });
     if (!o->csv.empty()) written.write(o->csv, [&](const std::string& f) { writeCompareCsv(f, room, c); });
-    written.commit();
+    commitAndAnnounce(written);
     if (common.json) {
       for (const auto& r : c.rows) {
         nlohmann::ordered_json j{{"listener", room.listeners[r.listener].name},

@@ -310,7 +310,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
     });
-    written.commit();
+    commitAndAnnounce(written);
     if (common.json) {
       std::cout << jsonText(side, 2) << std::endl;
       return 0;

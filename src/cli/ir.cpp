@@ -328,7 +328,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     written.write(side_json, [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
     });
-    written.commit();
+    commitAndAnnounce(written);
     if (common.json) {
       std::cout << jsonText(side, 2) << std::endl;
     } else {

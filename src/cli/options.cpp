@@ -208,6 +208,20 @@ std::string reasonOf(const core::InputError& e) {
   return e.where().empty() ? what : what.substr(e.where().size() + 2);
 }
 
+void announceLarge(const std::vector<std::string>& paths) {
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(p, ec);
+    if (ec || bytes <= 10'000'000) continue;
+    std::cerr << "diffray: note: " << core::oneLine(p) << " is " << (bytes + 500'000) / 1'000'000 << " MB\n";
+  }
+}
+
+void commitAndAnnounce(OutputFiles& outputs) {
+  outputs.commit();
+  announceLarge(outputs.committed());
+}
+
 void warnOf(const std::string& warning) {
   if (!warning.empty()) std::cerr << "diffray: warning: " << core::oneLine(warning) << "\n";
 }

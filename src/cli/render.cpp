@@ -125,7 +125,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
     written.write(withExtension(o->out, ".json"), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << "\n"; });
     });
-    written.commit();
+    commitAndAnnounce(written);
     std::cout << jsonText(side) << std::endl;
     return 0;
   };

@@ -207,7 +207,7 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
     if (!opts->plot.empty())  // first: the likelier to fail
       written.write(opts->plot, [&](const std::string& f) { writeValidationPlot(f, results); });
     if (!opts->csv.empty()) written.write(opts->csv, [&](const std::string& f) { writeCsv(f, results); });
-    written.commit();
+    commitAndAnnounce(written);
     if (!common.json) printTable(results, opts->verbose);
     return all_passed ? 0 : 1;
   };

@@ -171,7 +171,7 @@ Runner addWaveCommand(CLI::App& app, CommonOptions& common) {
       written.write(o->out, [&](const std::string& f) {
         core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(j, 2) << '\n'; });
       });
-    written.commit();
+    commitAndAnnounce(written);
     if (common.json) {
       std::cout << jsonText(j, 2) << std::endl;
       return 0;

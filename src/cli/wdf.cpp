@@ -166,6 +166,7 @@ Runner addWdfCommand(CLI::App& app, CommonOptions& common) {
             out << L.x0_m + (r + 0.5) * L.dx_m << ',' << L.u0_per_m + (k + 0.5) * L.du_per_m << ','
                 << table->mass(r, k) / L.du_per_m << '\n';
       });
+    if (!o->csv.empty()) announceLarge({o->csv});
     if (common.json) {
       std::cout << jsonText(j) << std::endl;
     } else {

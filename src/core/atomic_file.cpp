@@ -39,6 +39,7 @@ void OutputFiles::commit() {
       staged_.erase(staged_.begin(), staged_.begin() + static_cast<std::ptrdiff_t>(i));  // already in place
       throw InputError(failed, "cannot rename the finished output into place");  // the destructor cleans up
     }
+    committed_.push_back(target);
   }
   staged_.clear();
   registered_.clear();

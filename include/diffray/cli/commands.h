@@ -101,6 +101,12 @@ using core::OutputFiles;
 /// instead of an internal name (a temporary file, "resample").
 std::string reasonOf(const core::InputError& e);
 
+/// Prints one note on stderr for each of `paths` larger than 10 MB, with its size ("out.csv is 151 MB"): a
+/// table written cell by cell can be far larger than a user expects.
+void announceLarge(const std::vector<std::string>& paths);
+/// outputs.commit(), then announceLarge of what it put in place.
+void commitAndAnnounce(OutputFiles& outputs);
+
 /// Prints "diffray: warning: W" on stderr (one line) unless `warning` is empty.
 void warnOf(const std::string& warning);
 

@@ -44,6 +44,8 @@ class OutputFiles {
   /// if a rename fails: the files renamed before it stay replaced (the set is then mixed), the rest are
   /// removed.
   void commit();
+  /// The targets commit() put in place, in order.
+  const std::vector<std::string>& committed() const { return committed_; }
   /// The staging name of output number `index` of this process for `path`: "dir/name.ext" →
   /// "dir/name.part<pid>-<index>.ext".
   static std::string stagingName(const std::string& path, std::size_t index);
@@ -52,6 +54,7 @@ class OutputFiles {
   [[noreturn]] static void rethrowNaming(const InputError& e, const std::string& staging, const std::string& path);
   std::vector<std::pair<std::string, std::string>> staged_;  ///< (staging, target), not yet renamed
   std::vector<TempRegistration> registered_;                 ///< the staging names, for an interrupt
+  std::vector<std::string> committed_;
 };
 
 }  // namespace diffray::core
