@@ -175,10 +175,10 @@ expect_signal_error "output not a .wav"     sweep -o "$tmp/sig.csv"
 expect_signal_error "speed out of range"    speech -o "$tmp/sig.wav" --speed 5
 expect_signal_error "unknown voice"         speech -o "$tmp/sig.wav" --voice nosuchvoice
 # A CSV above 10 MB is announced with its size (wdf's cell table of 3 slits: about 150 MB, 3 s); a small
-# one is not.
+# one (a grating's line table, 54 kB) is not.
 "$bin" wdf slits --count 3 --width 50e-6 --spacing 150e-6 --csv "$tmp/big.csv" >/dev/null 2>"$tmp/stderr"
 big_mb=$(( ($(stat -c %s "$tmp/big.csv") + 500000) / 1000000 ))
-"$bin" wdf slit --width 50e-6 --csv "$tmp/small.csv" >/dev/null 2>"$tmp/stderr.small"
+"$bin" wdf grating --csv "$tmp/small.csv" >/dev/null 2>"$tmp/stderr.small"
 if [ "$big_mb" -gt 10 ] && grep -q "note: .*big.csv is $big_mb MB" "$tmp/stderr" && ! grep -q "note:" "$tmp/stderr.small"; then
   passes=$((passes + 1)); else echo "FAIL: a big CSV ($big_mb MB) not announced, or a small one announced"; cat "$tmp/stderr" "$tmp/stderr.small" | sed 's/^/    /'; fails=$((fails + 1)); fi
 rm -f "$tmp/big.csv" "$tmp/small.csv"
