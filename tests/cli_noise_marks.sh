@@ -56,6 +56,9 @@ for r in table.splitlines():
     if r.startswith("listener "):
         listener = r.split()[1]
         continue
+    if r.startswith("room (statistical"):  # the room's Sabine/Eyring table after the listeners'
+        listener = None
+        continue
     cells = r.split()
     if cells and cells[0].isdigit() and sums.get((listener, cells[0]), 1.0) < 0:
         if cells[-1] != "neg" or any(ch.isdigit() for ch in " ".join(cells[1:])):

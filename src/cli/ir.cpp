@@ -100,8 +100,13 @@ Statistics statisticsAgainstTraced(const room::Room& room, const std::vector<std
       if (std::isfinite(l[static_cast<std::size_t>(b)])) sum += l[static_cast<std::size_t>(b)], ++n;
     const double traced = n ? sum / n : std::nan("");
     const double eyring = st.eyring_s[static_cast<std::size_t>(b)], ratio = traced / eyring;
-    std::snprintf(line, sizeof line, "%7s  %10.3f  %10.3f  %10.3f  %12.3f  %13.2f\n", room.bands.label(b).c_str(),
-                  st.mean_alpha[static_cast<std::size_t>(b)], st.sabine_s[static_cast<std::size_t>(b)], eyring, traced, ratio);
+    std::snprintf(line, sizeof line, "%7s  %10.3f  %10.3f  %10.3f", room.bands.label(b).c_str(),
+                  st.mean_alpha[static_cast<std::size_t>(b)], st.sabine_s[static_cast<std::size_t>(b)], eyring);
+    out.table += line;
+    if (std::isfinite(traced))  // no listener with a T30 in this band (negative or too short a decay): '-'
+      std::snprintf(line, sizeof line, "  %12.3f  %13.2f\n", traced, ratio);
+    else
+      std::snprintf(line, sizeof line, "  %12s  %13s\n", "-", "-");
     out.table += line;
     const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
     out.json["bands"][room.bands.label(b)] = {
