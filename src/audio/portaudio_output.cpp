@@ -62,7 +62,7 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-PortAudioSession::PortAudioSession() {
+PortAudioHost::PortAudioHost() {
   PaError err;
   {
     QuietStderr quiet;
@@ -71,12 +71,12 @@ PortAudioSession::PortAudioSession() {
   check(err, "PortAudio could not start");
 }
 
-PortAudioSession::~PortAudioSession() {
+PortAudioHost::~PortAudioHost() {
   QuietStderr quiet;
   Pa_Terminate();
 }
 
-std::vector<OutputDevice> PortAudioSession::outputDevices() const {
+std::vector<OutputDevice> PortAudioHost::outputDevices() const {
   std::vector<OutputDevice> devices;
   const PaDeviceIndex count = Pa_GetDeviceCount();  // negative: an error, i.e. none usable
   const PaDeviceIndex default_out = Pa_GetDefaultOutputDevice();
@@ -97,7 +97,7 @@ std::vector<OutputDevice> PortAudioSession::outputDevices() const {
   return devices;
 }
 
-OutputDevice PortAudioSession::chooseOutputDevice(const std::string& spec) const {
+OutputDevice PortAudioHost::chooseOutputDevice(const std::string& spec) const {
   const std::vector<OutputDevice> devices = outputDevices();
   if (devices.empty()) throw core::InputError("", kNoDevice);
   if (spec.empty()) {
@@ -120,7 +120,7 @@ OutputDevice PortAudioSession::chooseOutputDevice(const std::string& spec) const
                                          " output devices; give its index" + hint);
 }
 
-PlaybackReport PortAudioSession::play(PlaybackRenderer& renderer, const OutputDevice& device, double sample_rate_hz,
+PlaybackReport PortAudioHost::play(PlaybackRenderer& renderer, const OutputDevice& device, double sample_rate_hz,
                                       const std::atomic<bool>& stop) {
   if (renderer.outputChannels() > device.max_output_channels)
     throw core::InputError("--device", device.name + " has " + std::to_string(device.max_output_channels) +

@@ -38,8 +38,8 @@ struct InterruptGuard {
 }  // namespace
 
 int listAudioDevices() {
-  audio::PortAudioSession session;
-  const auto devices = session.outputDevices();
+  audio::PortAudioHost host;
+  const auto devices = host.outputDevices();
   if (devices.empty()) {
     std::cout << "no audio output devices found (PortAudio found none)\n";
     return 0;
@@ -53,8 +53,8 @@ int listAudioDevices() {
 }
 
 void requireOutputDevice(const std::string& device) {
-  audio::PortAudioSession session;
-  session.chooseOutputDevice(device);
+  audio::PortAudioHost host;
+  host.chooseOutputDevice(device);
 }
 
 void requireBlockFrames(int block_frames) {
@@ -72,8 +72,8 @@ int playAuralization(const PlayOptions& o) {
   warnOf(dry.warning());
   warnOf(cut);
   const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);
-  audio::PortAudioSession session;
-  const audio::OutputDevice device = session.chooseOutputDevice(o.device);
+  audio::PortAudioHost host;
+  const audio::OutputDevice device = host.chooseOutputDevice(o.device);
 
   audio::PlaybackConfig config;
   config.block_frames = o.block_frames;
@@ -88,7 +88,7 @@ int playAuralization(const PlayOptions& o) {
   InterruptGuard guard;
   audio::DryFileStreamer streamer(dry, renderer);
   streamer.waitForPrefill(renderer.ringFrames() / 2);
-  const audio::PlaybackReport report = session.play(renderer, device, rate, g_interrupted);
+  const audio::PlaybackReport report = host.play(renderer, device, rate, g_interrupted);
   streamer.stop();
   streamer.wait();
   std::cout << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()

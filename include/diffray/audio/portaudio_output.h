@@ -1,14 +1,14 @@
 #pragma once
-// Playback on a sound card through PortAudio. A PortAudioSession holds PortAudio initialised for its
+// Playback on a sound card through PortAudio. A PortAudioHost holds PortAudio initialised for its
 // lifetime (Pa_Initialize / Pa_Terminate). PortAudio's host APIs (ALSA, JACK, OSS) print diagnostics on
 // stderr while they probe devices, which on a machine without sound hardware is a screenful of noise: the
-// session sends fd 2 to /dev/null while PortAudio initialises, opens and closes streams and terminates,
+// host object sends fd 2 to /dev/null while PortAudio initialises, opens and closes streams and terminates,
 // unless DIFFRAY_AUDIO_VERBOSE=1 is set. Errors still reach the user as one line (core::InputError carrying
 // Pa_GetErrorText).
 // Playback opens a paFloat32 output stream with the renderer's channel count and block size and hands it
 // audio::playbackCallback (audio/playback.h); play() polls from the calling thread until the renderer
 // finishes or `stop` is set (Ctrl-C).
-// Thread-safety: one session at a time per process, used from one thread.
+// Thread-safety: one PortAudioHost at a time per process, used from one thread.
 #include <atomic>
 #include <string>
 #include <vector>
@@ -33,13 +33,13 @@ struct PlaybackReport {
   bool interrupted = false;       ///< stopped by `stop` before the end
 };
 
-class PortAudioSession {
+class PortAudioHost {
  public:
   /// Initialises PortAudio; throws core::InputError when it cannot start.
-  PortAudioSession();
-  ~PortAudioSession();
-  PortAudioSession(const PortAudioSession&) = delete;
-  PortAudioSession& operator=(const PortAudioSession&) = delete;
+  PortAudioHost();
+  ~PortAudioHost();
+  PortAudioHost(const PortAudioHost&) = delete;
+  PortAudioHost& operator=(const PortAudioHost&) = delete;
 
   /// The devices with at least one output channel.
   std::vector<OutputDevice> outputDevices() const;
