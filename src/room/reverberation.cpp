@@ -1,8 +1,9 @@
 #include "diffray/room/reverberation.h"
 
-#include <cmath>
+#include <algorithm>
 #include <limits>
 
+#include "diffray/reference/room_acoustics.h"
 #include "diffray/room/air.h"
 
 namespace diffray::room {
@@ -24,17 +25,15 @@ StatisticalReverberation statisticalReverberation(const Room& room) {
   out.volume_m3 = room.volume();
   const double c = speedOfSound(room.air);
   const core::BandArray air = airAttenuationPerM(room.air, room.bands);
-  const double k = 24.0 * std::log(10.0) / c;
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const bool closed = out.volume_m3 > 0 && out.surface_m2 > 0;
   for (int b = 0; b < bands; ++b) {
-    const double a = absorption_area[static_cast<std::size_t>(b)];
+    const double a = absorption_area[static_cast<std::size_t>(b)], m = air[static_cast<std::size_t>(b)];
     const double alpha = out.surface_m2 > 0 ? a / out.surface_m2 : nan;
-    const double air_term = 4.0 * air[static_cast<std::size_t>(b)] * out.volume_m3;
-    const bool ok = out.volume_m3 > 0 && out.surface_m2 > 0;
+    const bool decays = closed && a + 4.0 * m * out.volume_m3 > 0;  // else the formulas' decay never ends
     out.mean_alpha.push_back(alpha);
-    out.sabine_s.push_back(ok ? k * out.volume_m3 / (a + air_term) : nan);
-    out.eyring_s.push_back(ok && alpha < 1.0 ? k * out.volume_m3 / (-out.surface_m2 * std::log1p(-alpha) + air_term)
-                                             : (ok ? 0.0 : nan));
+    out.sabine_s.push_back(decays ? reference::sabineT(out.volume_m3, a, m, c) : nan);
+    out.eyring_s.push_back(decays ? reference::eyringT(out.volume_m3, out.surface_m2, std::min(alpha, 1.0), m, c) : nan);
   }
   return out;
 }

@@ -20,7 +20,8 @@ struct StatisticalReverberation {
 
 /// Sabine T = (24 ln10 / c)·V / (Σ S_i α_i + 4mV) and Eyring T = (24 ln10 / c)·V / (−S ln(1 − ᾱ) + 4mV)
 /// (Kuttruff, Room Acoustics, 5th ed., eqs. 5.24 and 5.32 with air attenuation m, the energy attenuation
-/// per metre of ISO 9613-1), over the triangles of Room::enclosure(), c from the room's air.
+/// per metre of ISO 9613-1; reference::sabineT and eyringT), over the triangles of Room::enclosure(), c from
+/// the room's air.
 StatisticalReverberation statisticalReverberation(const Room& room);
 
 }  // namespace diffray::room
