@@ -5,7 +5,7 @@
 // Scheme (Kowalczyk & van Walstijn 2011, IEEE TASLP 19(1), the SRL member of their compact schemes; Bilbao
 // 2013, IEEE TASLP 21(7), eq. for the finite-volume boundary node). Courant number λ = c·dt/h ≤ 1/√3.
 //   air node with its 6 links open:  p⁺ = 2p − p⁻ + λ²·Σ₆(p_nbr − p)
-//   node with K < 6 open links:      p⁺ = [(2 − Kλ²)p + λ²·Σ_K p_nbr − (1 − g)p⁻] / (1 + g),  g = (λ/2)·Σ_blocked β_j
+//   node with K < 6 open links:      p⁺ = [2p + λ²·Σ_K(p_nbr − p) − (1 − g)p⁻] / (1 + g),  g = (λ/2)·Σ_blocked β_j
 // The second is the finite-volume balance of a full cubic cell h³: (h³/c²)·δtt p = h·Σ_K (p_nbr − p) −
 // h²·Σ_blocked (β_j/c)·δt· p, with the locally reacting wall ∂p/∂n = −(β/c)·∂p/∂t on each blocked face and
 // β_j = ρc/Z_j the normalised admittance of the material that blocks link j (centred differences). β = 0
@@ -22,6 +22,10 @@
 // Numerical dispersion (plane wave e^{i(ωt − kx)} along an axis, the worst direction):
 // sin(ω·dt/2) = λ·sin(k·h/2).
 // Precision: the fields are float (4 bytes; half the memory traffic of double), energies summed in double.
+// Both updates are evaluated in the difference form above, so that a uniform field is an exact solution
+// with rigid walls (the uniform mode's double root z = 1 stays on the unit circle: with separately rounded
+// coefficients it grows exponentially over a long run), and λ² is rounded down to float, so that the
+// highest grid mode stays inside the stability limit at λ = 1/√3.
 // Denormals are flushed to zero inside the update (the stencil's precursor ahead of a wavefront would
 // otherwise slow the float arithmetic a hundredfold).
 // Thread-safety: step() runs on all TBB threads (core/parallel.h's ThreadLimit applies); one scheme
@@ -71,7 +75,7 @@ double freeFieldFactor(double h_m, double dt_s, double c_m_s);
 struct FdtdBoundaryNode {
   std::uint32_t node = 0;
   std::uint8_t open = 0;  ///< bit d: link d open (its neighbour is air)
-  float a = 0, b = 0, c = 0;  ///< p⁺ = a·p + b·Σ_open p_nbr − c·p⁻
+  float a = 0, b = 0, c = 0;  ///< p⁺ = a·p + b·Σ_open (p_nbr − p) − c·p⁻
 };
 
 class FdtdScheme {
@@ -86,6 +90,8 @@ class FdtdScheme {
   const float* current() const { return cur_; }    ///< p^{n+1} after step()
   const float* previous() const { return prev_; }  ///< p^n after step()
   double courant() const { return lambda_; }
+  /// λ² as the update uses it: float, rounded down.
+  float coupling() const { return coupling_; }
   const std::vector<FdtdBoundaryNode>& boundary() const { return boundary_; }
   /// Bytes per node the scheme allocates (two float fields), for memory estimates.
   static constexpr double kBytesPerNode = 8.0;
@@ -93,6 +99,7 @@ class FdtdScheme {
  private:
   const FdtdGrid& grid_;
   double lambda_;
+  float coupling_ = 0.0f;
   std::vector<float> field_a_, field_b_;
   float* prev_;
   float* cur_;
