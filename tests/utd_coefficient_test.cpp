@@ -102,8 +102,9 @@ TEST(UtdCoefficient, CotTransitionLimitMatchesTheProduct) {
 }
 
 TEST(UtdCoefficient, HalfPlaneCheckValues) {
-  // Sommerfeld's half-plane evaluated independently to 5 digits: λ = 1 m, ρ = 3 m, φ0 = 60°, φ = 260° (in the shadow:
-  // the field is the diffracted one).
+  // Sommerfeld's half-plane to 5 digits, computed by quadrature in reference_test.cpp
+  // (SommerfeldHalfPlane.MatchesCheckValues): λ = 1 m, ρ = 3 m, φ0 = 60°, φ = 260° (in the shadow: the
+  // field is the diffracted one).
   EXPECT_NEAR(std::abs(utdHalfPlane(1.0, 3.0, degrees(260), degrees(60), true)), 0.27525, 5e-6);
   EXPECT_NEAR(std::abs(utdHalfPlane(1.0, 3.0, degrees(260), degrees(60), false)), 0.18061, 5e-6);
 }
