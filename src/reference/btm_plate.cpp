@@ -1,11 +1,14 @@
 // A thin rigid plate's field to first order in edge diffraction (see btm_plate.h).
 #include "diffray/reference/btm_plate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "diffray/core/error.h"
 #include "diffray/reference/btm_edge.h"
+#include "diffray/reference/btm_kernel.h"
 
 namespace diffray::reference {
 namespace {
@@ -69,18 +72,80 @@ bool crossesPlane(const PlateFrame& f, const Vec3& p, const Vec3& q, Vec3* at) {
   return true;
 }
 
-CylindricalPoint edgeFrame(const Vec3& origin, const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& p) {
-  const Vec3 d = p - origin;
-  double theta = std::atan2(d.dot(y), d.dot(x));
-  if (theta < 0.0) theta += 2.0 * kPi;
-  return {std::hypot(d.dot(x), d.dot(y)), theta, d.dot(z)};
+// An edge's frame (btm_plate.h): origin at its first vertex, z along it, x into the plate, y = the normal.
+struct EdgeFrame {
+  Vec3 origin, x, y, z;
+  double length = 0.0;
+  CylindricalPoint of(const Vec3& p) const {
+    const Vec3 d = p - origin;
+    double theta = std::atan2(d.dot(y), d.dot(x));
+    if (theta < 0.0) theta += 2.0 * kPi;
+    return {std::hypot(d.dot(x), d.dot(y)), theta, d.dot(z)};
+  }
+};
+
+std::vector<EdgeFrame> edgeFrames(const BtmPlate& plate, const PlateFrame& f) {
+  std::vector<EdgeFrame> frames;
+  const std::size_t n = plate.vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    EdgeFrame e;
+    e.origin = plate.vertices[i];
+    const Vec3 along = plate.vertices[(i + 1) % n] - e.origin;
+    e.length = along.norm();
+    e.z = along / e.length;
+    e.x = f.normal.cross(e.z);  // in the plane, into the polygon (counter-clockwise about the normal)
+    e.y = e.z.cross(e.x);       // the normal
+    frames.push_back(e);
+  }
+  return frames;
+}
+
+// u₂ of the ordered pair (ei, ej) for the path along the face at azimuth `face` (0 or 2π): see the header.
+// The inner integral over edge j is graded toward the apex of P_i and R on it; the outer one over edge i
+// toward a corner the two edges share (where n → 0), else from edge i's middle.
+Complex edgePair(double k, const EdgeFrame& ei, const EdgeFrame& ej, double face, const Vec3& source,
+                 const Vec3& receiver, double scale) {
+  const double nu = 0.5, wavelength = 2.0 * kPi / k;
+  const CylindricalPoint s = ei.of(source), r = ej.of(receiver);
+  const BtmBeta beta_i(nu, s.phi_rad, face), beta_j(nu, face, r.phi_rad);
+  double corner_j = -1.0;  // where on edge j a corner shared with edge i lies (set below), else −1
+  const auto inner = [&](double zi) {
+    const Vec3 pi = ei.origin + zi * ei.z;
+    const CylindricalPoint pi_j = ej.of(pi);  // P_i in edge j's frame
+    const double a_i = zi - s.z_m, m = std::hypot(s.rho_m, a_i);
+    const auto g = [&](double zj) {
+      const Vec3 pj = ej.origin + zj * ej.z;
+      const CylindricalPoint pj_i = ei.of(pj);  // P_j in edge i's frame
+      const double b_i = zi - pj_i.z_m, n = std::hypot(pj_i.rho_m, b_i);
+      const double a_j = zj - pi_j.z_m, b_j = zj - r.z_m, l = std::hypot(r.rho_m, b_j);
+      const double bi = beta_i(s.rho_m, pj_i.rho_m, a_i, b_i, m, n);
+      const double bj = beta_j(pi_j.rho_m, r.rho_m, a_j, b_j, n, l);
+      return std::polar(bi * bj / (m * n * l), -k * (m + n + l));
+    };
+    const double apex = std::clamp(pi_j.z_m + (r.z_m - pi_j.z_m) * pi_j.rho_m / (pi_j.rho_m + r.rho_m), 0.0, ej.length);
+    const double first_j = beta_j.firstPanel(pi_j.rho_m, r.rho_m, scale);
+    if (corner_j < 0.0) return btmGradedIntegral(g, apex, 0.0, ej.length, scale, wavelength, first_j);
+    // Near the shared corner n varies on the scale of P_i's distance from it: grade toward the corner too.
+    const double split = 0.5 * (apex + corner_j);
+    const double other_end = corner_j == 0.0 ? ej.length : 0.0;
+    return btmGradedIntegral(g, corner_j, std::min(corner_j, split), std::max(corner_j, split), scale, wavelength, 1e-8 * scale) +
+           btmGradedIntegral(g, apex, std::min(split, other_end), std::max(split, other_end), scale, wavelength, first_j);
+  };
+  double corner_i = 0.5 * ei.length;
+  const double touch = 1e-9 * scale;
+  if ((ei.origin + ei.length * ei.z - ej.origin).norm() < touch) corner_i = ei.length, corner_j = 0.0;
+  else if ((ei.origin - (ej.origin + ej.length * ej.z)).norm() < touch) corner_i = 0.0, corner_j = ej.length;
+  const Complex integral = btmGradedIntegral(inner, corner_i, 0.0, ei.length, scale, wavelength, 1e-8 * scale);
+  return 0.5 * (nu * nu / (16.0 * kPi * kPi)) * integral;
 }
 
 Complex spherical(double k, double r) { return std::polar(1.0 / r, -k * r); }
 
 }  // namespace
 
-BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, const Vec3& source, const Vec3& receiver) {
+BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, const Vec3& source, const Vec3& receiver,
+                            int order) {
+  if (order != 1 && order != 2) throw core::InputError("order", "must be 1 or 2, got " + std::to_string(order));
   const PlateFrame f = checkPlate(plate);
   for (int c = 0; c < 3; ++c) {
     core::requireFinite("source", source[c]);
@@ -99,19 +164,21 @@ BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, cons
     if (crossesPlane(f, image, receiver, &at) && insidePolygon(plate, f, at))
       u.specular = spherical(wavenumber_rad_m, (receiver - image).norm());
   }
-  const std::size_t n = plate.vertices.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& a = plate.vertices[i];
-    const Vec3& b = plate.vertices[(i + 1) % n];
-    const double length = (b - a).norm();
-    const Vec3 z = (b - a) / length;
-    const Vec3 x = f.normal.cross(z);  // in the plane, pointing into the polygon (counter-clockwise about n)
-    const Vec3 y = z.cross(x);
+  const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
+  for (const EdgeFrame& e : edges) {
     BtmWedge edge;
     edge.exterior_angle_rad = 2.0 * kPi;
     edge.z_start_m = 0.0;
-    edge.z_end_m = length;
-    u.diffracted += btmEdgeDiffraction(wavenumber_rad_m, edge, edgeFrame(a, x, y, z, source), edgeFrame(a, x, y, z, receiver));
+    edge.z_end_m = e.length;
+    u.diffracted += btmEdgeDiffraction(wavenumber_rad_m, edge, e.of(source), e.of(receiver));
+  }
+  if (order >= 2) {
+    const double scale = f.scale + (source - f.centroid).norm() + (receiver - f.centroid).norm();
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      for (std::size_t j = 0; j < edges.size(); ++j)
+        if (i != j)
+          for (double face : {0.0, 2.0 * kPi})
+            u.second_order += edgePair(wavenumber_rad_m, edges[i], edges[j], face, source, receiver, scale);
   }
   return u;
 }

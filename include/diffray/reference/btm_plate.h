@@ -1,15 +1,22 @@
 #pragma once
-// The field around a thin rigid plate of finite size, to first order in edge diffraction: the geometric
+// The field around a thin rigid plate of finite size, to second order in edge diffraction: the geometric
 // field (the direct wave where the plate does not block it, the plate's specular image where the reflection
-// point lies on the plate) plus the BTM diffracted field of each of its edges (btm_edge.h, exterior angle
-// 2π: each edge is a finite edge of a half-plane). Free field e^{−ikR}/R, time factor e^{+iωt}.
+// point lies on the plate), the BTM diffracted field of each of its edges (btm_edge.h, exterior angle 2π:
+// each edge is a finite edge of a half-plane), and the edge-to-edge diffracted field of every ordered pair of
+// edges (Svensson, Fred & Vanderkooy 1999, second order):
+//   u₂ = ½·Σ_faces (ν²/16π²)·∫_{edge i}∫_{edge j} β_i·β_j·e^{−ik(m + n + l)}/(m·n·l) dz_i dz_j,   ν = ½,
+// m = |S − P_i|, n = |P_i − P_j|, l = |P_j − R|; β_i is edge i's directivity from S to P_j, β_j edge j's from
+// P_i to R (btm_kernel.h). The path between the edges runs along the plate, on its +n face (P_j at θ = 0 in
+// edge i's frame, P_i at θ = 0 in edge j's) or its −n face (θ = 2π in both); a point on a rigid face counts
+// its own image, which the ½ of a path along a plane takes back out. Free field e^{−ikR}/R, time factor
+// e^{+iωt}.
 //
 // Frame of an edge from vertex A to vertex B: z along B − A (0 at A, |B − A| at B), x in the plate's plane
 // pointing into the plate, y = z × x; θ = atan2(y, x) in [0, 2π). The direct wave's and the image's zones
-// switch exactly where one edge term's boundary lies, so the sum is continuous across every shadow and
-// reflection boundary away from the plate's corners. What this leaves out: edge-to-edge (second-order)
-// diffraction, which is what keeps the field continuous where a boundary passes a corner, and which
-// matters where the edges' diffracted waves are strong at one another (small plates at low frequencies).
+// switch exactly where one edge term's boundary lies, so the first-order sum is continuous across every
+// shadow and reflection boundary away from the plate's corners. Each edge's first-order term treats the
+// plate as a half-plane without end, so it jumps where the receiver crosses the plate's plane beyond the
+// plate; the second-order terms jump there by the opposite amount. Third and higher orders are left out.
 //
 // Contract: an ORACLE like btm_edge.h (no code shared with UTD or the WBSDF). The plate is a convex planar
 // polygon of at least 3 vertices, given in order; sources and receivers off its plane's polygon and off its
@@ -31,10 +38,12 @@ struct BtmPlateField {
   std::complex<double> direct{0.0, 0.0};    ///< e^{−ikR}/R where the segment misses the plate, else 0
   std::complex<double> specular{0.0, 0.0};  ///< the plate's image, where its reflection point is on the plate
   std::complex<double> diffracted{0.0, 0.0};  ///< Σ over the edges of the first-order BTM term
-  std::complex<double> total() const { return direct + specular + diffracted; }
+  std::complex<double> second_order{0.0, 0.0};  ///< Σ over ordered pairs of edges of u₂ (0 at order 1)
+  std::complex<double> total() const { return direct + specular + diffracted + second_order; }
 };
 
+/// The field to `order` (1 or 2) in edge diffraction.
 BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, const core::Vec3& source,
-                            const core::Vec3& receiver);
+                            const core::Vec3& receiver, int order = 2);
 
 }  // namespace diffray::reference
