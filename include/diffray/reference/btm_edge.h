@@ -16,10 +16,10 @@
 // η vanishes at the apex point z_a = zS + (zR − zS)·ρS/(ρS + ρR), the point of least path m + l; near a
 // shadow or reflection boundary one term of β peaks there with a width proportional to the angular distance
 // to the boundary, and its integral tends to ∓½ of the geometric wave that the boundary switches.
-// Quadrature: the edge is split at the apex; 16-point Gauss–Legendre panels grow geometrically from 1e-10 of
-// the geometry's scale at the apex to at most half a wavelength and the scale, so boundaries are resolved to
-// about 1e-8 rad; closer than 1e-9 rad a receiver counts as on the boundary (the term 0, the geometric
-// wave ½). An infinite end is integrated to 60 scales from the apex (scale = ρS + ρR + |zS − zR|)
+// Quadrature (btm_kernel.h): the edge is split at the apex; Gauss–Legendre panels grow geometrically from a
+// first panel sized to the integrand's narrowest feature there (boundaries resolved to about 1e-8 rad;
+// closer than 1e-9 rad a receiver counts as on the boundary: the term 0, the geometric wave ½) to at most
+// half a wavelength. An infinite end is integrated to 60 scales from the apex (scale = ρS + ρR + |zS − zR|)
 // and the rest added as the first term of integration by parts, A(U)·e^{−ikΦ(U)}/(ikΦ'(U)); what that
 // leaves out falls as U^{−3−2ν} (below 1e-10 of the diffracted field in the tests).
 //
