@@ -248,9 +248,12 @@ std::vector<BandUncertainty> markMetrics(std::vector<BandMetrics>& metrics, cons
   for (std::size_t b = 0; b < u.size(); ++b) {
     BandUncertainty& m = out[b];
     BandMetrics& bm = metrics[b];
-    // The decay range reaches no deeper than the Monte-Carlo noise lets the curve be read.
-    if (std::isfinite(m.monte_carlo_range_db) && bm.decay_range_db > m.monte_carlo_range_db)
+    // The decay range reaches no deeper than the Monte-Carlo noise lets the curve be read; the standard
+    // error of the curve's own depth says nothing about that limit, so the capped range has none.
+    if (std::isfinite(m.monte_carlo_range_db) && bm.decay_range_db > m.monte_carlo_range_db) {
       bm.decay_range_db = m.monte_carlo_range_db;
+      m.decay_range_se = kNaN;
+    }
     if (m.negative_energy) {
       BandMetrics none;
       none.shorter_than_filter = bm.shorter_than_filter;

@@ -69,7 +69,7 @@ struct BandUncertainty {
 /// used) there are no standard errors, and only the negative-energy marks.
 std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response);
 /// Marks of `metrics` from the standard errors of `u`, and their decay_range_db capped at
-/// u.monte_carlo_range_db (a copy of u with noisy[] and negative[] set for
+/// u.monte_carlo_range_db (then without decay_range_se) (a copy of u with noisy[] and negative[] set for
 /// these figures, and no standard error for a figure they do not give); the figures that negative energy
 /// makes unavailable (all of a band that sums negative) are set to NaN in `metrics` (never a plain number).
 /// `histogram_marks`: for the metrics of a WAV synthesized from the histogram (which reads negative bins
