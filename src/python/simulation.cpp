@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <chrono>
 #include <map>
 #include <cmath>
 #include <memory>
@@ -95,17 +96,22 @@ std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& r
   // Python runs its signal handlers only in the main thread, with the GIL: the progress callback, when the
   // calling thread runs it (it takes its share of the work), holds the GIL for a moment and lets Python
   // check; a KeyboardInterrupt (or any exception a handler raises) then stops every thread's work.
+  // At most every 50 ms, so that a busy Python thread elsewhere does not hold the tracer up at the GIL.
   std::atomic<bool> interrupted{false};
   const std::thread::id caller = std::this_thread::get_id();
+  auto last_check = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     core::ThreadLimit limit(threads);
     std::unique_ptr<core::Progress> bar;
     if (progress) bar = std::make_unique<core::Progress>("simulate " + room.name, so.rays * room.sources.size());
-    so.on_progress = [&bar, &interrupted, caller](std::uint64_t n) {
+    so.on_progress = [&bar, &interrupted, &last_check, caller](std::uint64_t n) {
       if (bar) bar->add(n);
       if (interrupted.load()) throw Interrupted{};
       if (std::this_thread::get_id() != caller) return;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_check < std::chrono::milliseconds(50)) return;
+      last_check = now;  // only the calling thread gets here
       py::gil_scoped_acquire gil;
       if (PyErr_CheckSignals() != 0) {
         interrupted = true;
