@@ -54,33 +54,50 @@ TEST(AudioWav, Float32RoundTripIsBitExact) {
   std::memset(&info, 0, sizeof info);
   SNDFILE* f = sf_open(dir.file("a.wav").c_str(), SFM_READ, &info);
   ASSERT_NE(f, nullptr);
-  EXPECT_EQ(info.format, SF_FORMAT_WAVEX | SF_FORMAT_FLOAT);
+  EXPECT_EQ(info.format, SF_FORMAT_WAV | SF_FORMAT_FLOAT);  // two channels: WAVE_FORMAT_IEEE_FLOAT
   sf_close(f);
 }
 
-// The WAVE header per Microsoft's WAVEFORMATEXTENSIBLE (the form a 32-bit float file of more than two
-// channels requires; a plain 16-byte fmt chunk for float lacks the cbSize the spec asks for): a 40-byte fmt chunk,
-// format tag 0xFFFE, cbSize 22, 32 valid bits, the IEEE-float sub-format GUID, and a fact chunk (required for
-// every format but PCM). Read byte by byte here, for both writers (whole buffer and streaming).
-void expectExtensibleFloatHeader(const std::string& path, int channels) {
+// The WAVE header per Microsoft's WAVEFORMATEX and WAVEFORMATEXTENSIBLE, read byte by byte here for both
+// writers (whole buffer and streaming). Every non-PCM format carries cbSize; one or two channels of float are
+// WAVE_FORMAT_IEEE_FLOAT (tag 3) in an 18-byte fmt chunk with cbSize 0; more than two channels require the
+// extensible form: a 40-byte fmt chunk, tag 0xFFFE, cbSize 22, 32 valid bits, the IEEE-float sub-format GUID.
+// A fact chunk (required for every format but PCM) holds the frames per channel; the RIFF and data sizes
+// match the file.
+void expectFloatHeader(const std::string& path, int channels, unsigned frames) {
   std::ifstream in(path, std::ios::binary);
   const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const auto u16 = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(b[i]) | static_cast<unsigned char>(b[i + 1]) << 8); };
   const auto u32 = [&](std::size_t i) { return u16(i) | u16(i + 2) << 16; };
   ASSERT_GE(b.size(), 12u);
   ASSERT_EQ(b.substr(0, 4), "RIFF");
+  EXPECT_EQ(u32(4), b.size() - 8);
   ASSERT_EQ(b.substr(8, 4), "WAVE");
-  std::size_t fmt = 0, fact = 0;
+  std::size_t fmt = 0, fact = 0, data = 0;
   for (std::size_t i = 12; i + 8 <= b.size(); i += 8 + u32(i + 4) + (u32(i + 4) & 1u)) {
     if (b.substr(i, 4) == "fmt ") fmt = i;
     if (b.substr(i, 4) == "fact") fact = i;
+    if (b.substr(i, 4) == "data") data = i;
   }
   ASSERT_NE(fmt, 0u) << path;
-  EXPECT_NE(fact, 0u) << path;
+  ASSERT_NE(fact, 0u) << path;
+  ASSERT_NE(data, 0u) << path;
+  EXPECT_EQ(u32(fact + 8), frames);
+  EXPECT_EQ(u32(data + 4), frames * 4u * static_cast<unsigned>(channels));
+  EXPECT_EQ(data + 8 + u32(data + 4), b.size());
+  EXPECT_EQ(u16(fmt + 10), static_cast<unsigned>(channels));
+  EXPECT_EQ(u32(fmt + 12), 48000u);
+  EXPECT_EQ(u32(fmt + 16), 48000u * 4u * static_cast<unsigned>(channels));  // bytes per second
+  EXPECT_EQ(u16(fmt + 20), 4u * static_cast<unsigned>(channels));             // block align
+  EXPECT_EQ(u16(fmt + 22), 32u);                                              // bits per sample
+  if (channels <= 2) {
+    EXPECT_EQ(u32(fmt + 4), 18u);
+    EXPECT_EQ(u16(fmt + 8), 3u);   // WAVE_FORMAT_IEEE_FLOAT
+    EXPECT_EQ(u16(fmt + 24), 0u);  // cbSize
+    return;
+  }
   EXPECT_EQ(u32(fmt + 4), 40u);
   EXPECT_EQ(u16(fmt + 8), 0xFFFEu);
-  EXPECT_EQ(u16(fmt + 10), static_cast<unsigned>(channels));
-  EXPECT_EQ(u16(fmt + 22), 32u);  // bits per sample
   EXPECT_EQ(u16(fmt + 24), 22u);  // cbSize
   EXPECT_EQ(u16(fmt + 26), 32u);  // valid bits
   const unsigned char guid[16] = {0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x10, 0x00,
@@ -88,22 +105,30 @@ void expectExtensibleFloatHeader(const std::string& path, int channels) {
   EXPECT_EQ(std::memcmp(b.data() + fmt + 32, guid, 16), 0) << "KSDATAFORMAT_SUBTYPE_IEEE_FLOAT";
 }
 
-TEST(AudioWav, HeaderIsWaveFormatExtensibleFloat) {
+TEST(AudioWav, HeaderIsFloatPerTheWaveSpec) {
   const TempDir dir("wav_test");
-  for (int channels : {1, 2, 5}) {
+  for (int channels : {1, 2, 3, 5}) {
     AudioBuffer a;
     a.sample_rate_hz = 48000;
     a.channels = channels;
     a.samples.assign(static_cast<std::size_t>(channels) * 64, 0.25);
     const std::string whole = dir.file("whole" + std::to_string(channels) + ".wav");
     writeWavFloat(whole, a);
-    expectExtensibleFloatHeader(whole, channels);
+    expectFloatHeader(whole, channels, 64);
     const std::string streamed = dir.file("streamed" + std::to_string(channels) + ".wav");
     WavWriter w(streamed, 48000, channels);
-    const std::vector<float> frames(static_cast<std::size_t>(channels) * 64, 0.25f);
-    w.write(frames.data(), 64);
+    const std::vector<float> frames(static_cast<std::size_t>(channels) * 40, 0.25f);
+    w.write(frames.data(), 40);
+    w.write(frames.data(), 24);
     w.commit();
-    expectExtensibleFloatHeader(streamed, channels);
+    expectFloatHeader(streamed, channels, 64);
+    // libsndfile reads both back, every sample.
+    for (const std::string& f : {whole, streamed}) {
+      const AudioBuffer r = readAudio(f);
+      EXPECT_EQ(r.channels, channels);
+      ASSERT_EQ(r.samples.size(), a.samples.size()) << f;
+      for (double v : r.samples) EXPECT_EQ(v, 0.25);
+    }
   }
 }
 

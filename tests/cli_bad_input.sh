@@ -192,6 +192,13 @@ expect_ir_beside "ir: -o shoebox.wav beside shoebox.json" "shoebox.wav shoebox.i
 grep -q "note: shoebox.json is an input" "$tmp/stderr" && passes=$((passes + 1)) ||
   { echo "FAIL: ir -o shoebox.wav: no note on the sidecar's name"; fails=$((fails + 1)); }
 expect_ir_beside "ir: -o materials.wav keeps the library" "materials.wav materials.ir.json materials.ir.csv" ir shoebox.json -o materials.wav --rays 2000
+# render -o cd.png beside cd.json: the sidecar becomes cd.render.json, with a note; the scene is untouched.
+cp "$rooms/light/cd.json" "$tmp/lib/cd.json"
+(cd "$tmp/lib" && "$bin" render cd.json -o cd.png --photons 2000 >/dev/null 2>"$tmp/stderr")
+if [ $? -eq 0 ] && cmp -s "$tmp/lib/cd.json" "$rooms/light/cd.json" && [ -s "$tmp/lib/cd.render.json" ] &&
+   [ -s "$tmp/lib/cd.png" ] && grep -q "note: cd.json is the scene, so the sidecar is cd.render.json" "$tmp/stderr"; then
+  passes=$((passes + 1)); else echo "FAIL: render -o cd.png beside cd.json"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+rm -f "$tmp/lib/cd."*
 expect_input_kept "compare: --csv onto the scene"                  barrier.json compare barrier.json --models utd --csv barrier.json
 expect_input_kept "wdf: --csv onto the profile"                    p.csv wdf profile --profile p.csv --csv p.csv
 

@@ -152,6 +152,14 @@ assert len(rows) == 1 + 2 * 3, rows
 PY
 then passes=$((passes + 1)); else
   echo "FAIL: door: good run did not write the WAV, PNG, JSON and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+# An output above full scale is written with one warning giving its peak in dBFS; 120 dB less is not warned about.
+for gain in 60 -60; do
+  "$bin" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.05:0.2 --steps 2 --rays 3000 --gain $gain >/dev/null 2>"$tmp/stderr"
+  code=$?
+  warned=$(grep -c "^diffray: warning: .*door.wav peaks at +[0-9.]* dBFS, above full scale.*lower --gain" "$tmp/stderr")
+  if [ $code -eq 0 ] && { { [ $gain -gt 0 ] && [ "$warned" -eq 1 ]; } || { [ $gain -lt 0 ] && ! grep -q "full scale" "$tmp/stderr"; }; }; then
+    passes=$((passes + 1)); else echo "FAIL: door --gain $gain: clipping warning wrong (exit=$code)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
+done
 
 # diffray signal: bad options give one line and leave no WAV behind.
 expect_signal_error() {  # expect_signal_error DESCRIPTION ARGS...
@@ -182,10 +190,11 @@ big_mb=$(( ($(stat -c %s "$tmp/big.csv") + 500000) / 1000000 ))
 if [ "$big_mb" -gt 10 ] && grep -q "note: .*big.csv is $big_mb MB" "$tmp/stderr" && ! grep -q "note:" "$tmp/stderr.small"; then
   passes=$((passes + 1)); else echo "FAIL: a big CSV ($big_mb MB) not announced, or a small one announced"; cat "$tmp/stderr" "$tmp/stderr.small" | sed 's/^/    /'; fails=$((fails + 1)); fi
 rm -f "$tmp/big.csv" "$tmp/small.csv"
-# A WAV cut short (a copy interrupted): read, with one warning naming the file and what is missing.
+# A WAV cut short (a copy interrupted): read, with one warning naming the file and what is missing (200000
+# bytes kept, less the 58-byte header of a mono float WAV).
 "$bin" signal clicks -o "$tmp/whole.wav" --duration 2 >/dev/null 2>&1
 head -c 200000 "$tmp/whole.wav" >"$tmp/cut.wav"
-if "$bin" metrics "$tmp/cut.wav" >/dev/null 2>"$tmp/stderr" && [ "$(grep -c "warning: .*cut.wav: the file is cut short: its header declares 384000 bytes of samples, it holds 199896" "$tmp/stderr")" -eq 1 ] &&
+if "$bin" metrics "$tmp/cut.wav" >/dev/null 2>"$tmp/stderr" && [ "$(grep -c "warning: .*cut.wav: the file is cut short: its header declares 384000 bytes of samples, it holds 199942" "$tmp/stderr")" -eq 1 ] &&
    "$bin" metrics "$tmp/whole.wav" >/dev/null 2>"$tmp/stderr.whole" && ! grep -q "cut short" "$tmp/stderr.whole"; then
   passes=$((passes + 1)); else echo "FAIL: metrics on a truncated WAV: no warning (or one on the whole file)"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 rm -f "$tmp/whole.wav" "$tmp/cut.wav"

@@ -45,7 +45,12 @@ TEST(IrMetrics, ExponentialDecayMatchesClosedFormsAndHandValues) {
     // bin's middle, a relative error of (kΔ)²/12 (1.6e-5 for T = 1 s, 6.4e-5 for 0.5 s) to leading order.
     const double k_bin = rate(t60) * 1e-3;
     EXPECT_NEAR(m.ts, 1.0 / rate(t60), 1.2 * k_bin * k_bin / 12.0 / rate(t60));
-    EXPECT_GT(m.decay_range_db, 100.0);
+    // The record ends while it decays, and Lundeby's first noise estimate is the mean power of its last 10 %
+    // (Δ): the decay line e^{−kt} meets it at t_c = t_end − Δ + ln(kΔ/(1 − e^{−kΔ}))/k, where the integral
+    // stops. The range is the exact curve's depth there, 60·t_c/T dB, to within the bin t_c falls in.
+    const double t_end = 2 * t60 + 0.5, delta = 0.1 * t_end, k = rate(t60);
+    const double t_c = t_end - delta + std::log(k * delta / (1.0 - std::exp(-k * delta))) / k;
+    EXPECT_NEAR(m.decay_range_db, 60.0 * t_c / t60, 60.0 * 1e-3 / t60);
   }
   // The closed forms evaluated by hand, to the digits quoted (±half a unit in the last place).
   const BandMetrics one = metricsFromEnergy(exponentialHistogram(1.0, 1e-3, 2.5), 1e-3);

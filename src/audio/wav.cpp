@@ -3,7 +3,9 @@
 #include <sndfile.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cfloat>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +13,7 @@
 #include <memory>
 #include <sstream>
 
+#include "diffray/audio/wav_float_format.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
 
@@ -33,39 +36,6 @@ struct SndfileCloser {
   void operator()(SNDFILE* f) const { sf_close(f); }
 };
 using SndfilePtr = std::unique_ptr<SNDFILE, SndfileCloser>;
-
-/// A growable in-memory file for libsndfile's virtual I/O: the WAV is encoded here first, then handed to
-/// core::writeFileAtomically, so the atomic temporary-and-rename logic lives in one place.
-struct MemoryFile {
-  std::vector<char> bytes;
-  sf_count_t pos = 0;
-
-  static sf_count_t length(void* self) { return static_cast<sf_count_t>(static_cast<MemoryFile*>(self)->bytes.size()); }
-  static sf_count_t seek(sf_count_t offset, int whence, void* self) {
-    auto* m = static_cast<MemoryFile*>(self);
-    const sf_count_t base = whence == SEEK_SET ? 0 : whence == SEEK_CUR ? m->pos : static_cast<sf_count_t>(m->bytes.size());
-    if (base + offset < 0) return -1;
-    m->pos = base + offset;
-    return m->pos;
-  }
-  static sf_count_t read(void* ptr, sf_count_t count, void* self) {
-    auto* m = static_cast<MemoryFile*>(self);
-    const sf_count_t size = static_cast<sf_count_t>(m->bytes.size());
-    const sf_count_t n = std::max<sf_count_t>(0, std::min(count, size - m->pos));
-    if (n > 0) std::memcpy(ptr, m->bytes.data() + m->pos, static_cast<size_t>(n));
-    m->pos += n;
-    return n;
-  }
-  static sf_count_t write(const void* ptr, sf_count_t count, void* self) {
-    auto* m = static_cast<MemoryFile*>(self);
-    const auto end = static_cast<size_t>(m->pos + count);
-    if (end > m->bytes.size()) m->bytes.resize(end);
-    std::memcpy(m->bytes.data() + m->pos, ptr, static_cast<size_t>(count));
-    m->pos += count;
-    return count;
-  }
-  static sf_count_t tell(void* self) { return static_cast<MemoryFile*>(self)->pos; }
-};
 
 std::string sampleWhere(long index, int channels) {
   std::ostringstream s;
@@ -159,27 +129,16 @@ void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
       throw core::InputError(path, "refusing to write sample at " + sampleWhere(static_cast<long>(i), audio.channels) +
                                        ": " + (std::isnan(v) ? "NaN" : "not a finite 32-bit float"));
   }
-
-  MemoryFile memory;
-  SF_VIRTUAL_IO io{&MemoryFile::length, &MemoryFile::seek, &MemoryFile::read, &MemoryFile::write, &MemoryFile::tell};
-  SF_INFO info;
-  std::memset(&info, 0, sizeof(info));
-  info.samplerate = static_cast<int>(fs);
-  info.channels = audio.channels;
-  info.format = SF_FORMAT_WAVEX | SF_FORMAT_FLOAT;  // WAVE_FORMAT_EXTENSIBLE: required above 2 channels or 16 bits
-  if (!sf_format_check(&info)) throw core::InputError(path, "libsndfile refuses this WAV layout");
-  {
-    SndfilePtr file(sf_open_virtual(&io, SFM_WRITE, &info, &memory));
-    if (!file) throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(nullptr));
-    // No PEAK chunk: libsndfile stamps it with the wall-clock time, so two runs with the same seed wrote
-    // different bytes whenever they fell in different seconds (reproducible runs must be byte-identical).
-    sf_command(file.get(), SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
-    const auto frames = static_cast<sf_count_t>(audio.samples.size() / static_cast<size_t>(audio.channels));
-    if (sf_writef_double(file.get(), audio.samples.data(), frames) != frames)
-      throw core::InputError(path, std::string("cannot encode WAV: ") + sf_strerror(file.get()));
-  }  // sf_close writes the final header sizes
-  core::writeFileAtomically(path, [&memory](std::ostream& out) {
-    out.write(memory.bytes.data(), static_cast<std::streamsize>(memory.bytes.size()));
+  if (fs * 4.0 * audio.channels > 4294967295.0)
+    throw core::InputError(path, "cannot write a WAV of " + std::to_string(audio.channels) + " channels at " +
+                                     std::to_string(fs) + " Hz (its byte rate field is 32-bit)");
+  const auto frames = static_cast<std::uint64_t>(audio.frames());
+  requireWavFits(path, static_cast<double>(frames), audio.channels, fs);
+  std::string bytes = floatWavHeader(audio.channels, static_cast<int>(fs), frames);
+  const std::vector<float> values(audio.samples.begin(), audio.samples.end());
+  appendFloat32LE(bytes, values.data(), values.size());
+  core::writeFileAtomically(path, [&bytes](std::ostream& out) {
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   });
 }
 
@@ -224,24 +183,22 @@ long AudioReader::read(float* out, long frames) {
 
 WavWriter::WavWriter(const std::string& path, int sample_rate_hz, int channels)
     : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), registered_(tmp_), channels_(channels) {
-  SF_INFO info;
-  std::memset(&info, 0, sizeof(info));
-  info.samplerate = sample_rate_hz;
-  info.channels = channels;
-  info.format = SF_FORMAT_WAVEX | SF_FORMAT_FLOAT;  // WAVE_FORMAT_EXTENSIBLE: required above 2 channels or 16 bits
-  if (channels < 1 || channels > 1024 || sample_rate_hz < 1 || !sf_format_check(&info))
-    throw core::InputError(path, "libsndfile refuses a float WAV of " + std::to_string(channels) + " channels at " +
+  if (channels < 1 || channels > 1024 || sample_rate_hz < 1 ||
+      static_cast<double>(sample_rate_hz) * 4.0 * channels > 4294967295.0)
+    throw core::InputError(path, "cannot write a float WAV of " + std::to_string(channels) + " channels at " +
                                      std::to_string(sample_rate_hz) + " Hz");
-  SNDFILE* file = sf_open(tmp_.c_str(), SFM_WRITE, &info);
-  if (file == nullptr) throw core::InputError(path, std::string("cannot open for writing: ") + sf_strerror(nullptr));
+  rate_hz_ = sample_rate_hz;
+  std::FILE* file = std::fopen(tmp_.c_str(), "wb");
+  if (file == nullptr) throw core::InputError(path, std::string("cannot open for writing: ") + std::strerror(errno));
   file_ = file;
-  // No PEAK chunk: it carries the wall-clock time, and identical runs must write identical bytes.
-  sf_command(file, SFC_SET_ADD_PEAK_CHUNK, nullptr, SF_FALSE);
+  const std::string header = floatWavHeader(channels_, rate_hz_, 0);  // sizes filled in by commit()
+  if (std::fwrite(header.data(), 1, header.size(), file) != header.size())
+    throw core::InputError(path, std::string("write failed: ") + std::strerror(errno));
 }
 
 WavWriter::~WavWriter() {
   if (file_ == nullptr) return;  // committed
-  sf_close(static_cast<SNDFILE*>(file_));
+  std::fclose(static_cast<std::FILE*>(file_));
   std::remove(tmp_.c_str());
 }
 
@@ -251,19 +208,26 @@ void WavWriter::write(const float* samples, long frames) {
     if (!std::isfinite(samples[i]))
       throw core::InputError(path_, "refusing to write sample at " + sampleWhere(written_ * channels_ + i, channels_) +
                                         ": " + (std::isnan(samples[i]) ? "NaN" : "infinite"));
-  auto* file = static_cast<SNDFILE*>(file_);
-  if (sf_writef_float(file, samples, static_cast<sf_count_t>(frames)) != static_cast<sf_count_t>(frames))
-    throw core::InputError(path_, std::string("write failed: ") + sf_strerror(file));
+  if ((static_cast<double>(written_) + static_cast<double>(frames)) * 4.0 * channels_ > kMaxWavDataBytes)
+    throw core::InputError(path_, "write failed: the audio outgrows a WAV file's 4 GiB limit");
+  block_.clear();
+  appendFloat32LE(block_, samples, static_cast<std::size_t>(count));
+  if (std::fwrite(block_.data(), 1, block_.size(), static_cast<std::FILE*>(file_)) != block_.size())
+    throw core::InputError(path_, std::string("write failed: ") + std::strerror(errno));
   written_ += frames;
 }
 
 void WavWriter::commit() {
   DIFFRAY_CHECK(file_ != nullptr);
-  const int closed = sf_close(static_cast<SNDFILE*>(file_));  // writes the final header sizes
+  auto* file = static_cast<std::FILE*>(file_);
+  const std::string header = floatWavHeader(channels_, rate_hz_, static_cast<std::uint64_t>(written_));
+  const bool header_ok = std::fseek(file, 0, SEEK_SET) == 0 &&
+                         std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  const int closed = std::fclose(file);
   file_ = nullptr;
-  if (closed != 0 || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+  if (!header_ok || closed != 0 || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
     std::remove(tmp_.c_str());
-    throw core::InputError(path_, "cannot finish writing (close or rename failed)");
+    throw core::InputError(path_, "cannot finish writing (header, close or rename failed)");
   }
 }
 

@@ -79,7 +79,6 @@ void checkOutputPath(const AuralizeOptions& o) {
     if (fs::equivalent(o.out, input, ec)) throw core::InputError(o.out, "would overwrite the input " + input);
 }
 
-double dbfs(double peak) { return peak > 0.0 ? 20.0 * std::log10(peak) : -INFINITY; }
 
 /// Convolves the dry file through `conv` into `writer` scaled by `gain`, the tail included; returns the
 /// peak |sample| written.
@@ -235,12 +234,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
       peak = raw_peak * scale;
       applied_db = 20.0 * std::log10(scale);
     }
-    // Float WAV keeps samples above full scale, but players and fixed-point conversions clip them.
-    if (peak > 1.0)
-      std::cerr << "diffray: warning: " << core::oneLine(o->out) << " peaks at " << std::showpos << std::fixed
-                << std::setprecision(1) << dbfs(peak) << std::noshowpos << std::defaultfloat
-                << " dBFS, above full scale: it will clip when played or converted to fixed point (--normalize "
-                   "sets the peak to -1 dBFS, or lower --gain)\n";
+    warnIfClips(o->out, peak, "--normalize sets the peak to -1 dBFS, or lower --gain");
     std::cout << "wrote " << o->out << ": " << frames << " frames x " << conv.outputChannels() << " channel"
               << (conv.outputChannels() > 1 ? "s" : "") << " at " << rate << " Hz (input " << dry.frames()
               << " + IR " << ir_frames << " - 1), gain " << applied_db << " dB, peak " << dbfs(peak) << " dBFS\n";

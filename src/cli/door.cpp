@@ -87,9 +87,10 @@ void checkOutputs(const DoorOptions& o, const std::string& png, std::vector<std:
 
 double toDb(double ratio) { return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity(); }
 
-/// Convolves the dry signal through the steps' IRs into OUT.wav; returns the first output channel.
+/// Convolves the dry signal through the steps' IRs into OUT.wav; returns the first output channel and sets
+/// `peak` to the largest |sample| written (linear, full scale 1).
 std::vector<float> render(audio::AudioReader& reader, const std::vector<std::vector<std::vector<float>>>& irs,
-                          const std::vector<long>& keys, double gain, const std::string& out) {
+                          const std::vector<long>& keys, double gain, const std::string& out, double& peak) {
   dsp::CrossfadeConvolver conv;
   conv.init(kBlock, irs, 1, keys);
   const int c_in = reader.channels(), c_out = conv.outputChannels();
@@ -98,7 +99,10 @@ std::vector<float> render(audio::AudioReader& reader, const std::vector<std::vec
   std::vector<float> first;
   first.reserve(static_cast<std::size_t>(reader.frames() + irs[0][0].size()));
   auto emit = [&](long n) {
-    for (long i = 0; i < n * c_out; ++i) wet[i] = static_cast<float>(wet[i] * gain);
+    for (long i = 0; i < n * c_out; ++i) {
+      wet[i] = static_cast<float>(wet[i] * gain);
+      peak = std::max(peak, static_cast<double>(std::abs(wet[i])));
+    }
     writer.write(wet.data(), n);
     for (long f = 0; f < n; ++f) first.push_back(wet[f * c_out]);
   };
@@ -261,9 +265,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
     OutputFiles written;  // replaced together: a later failure leaves the previous files
     std::vector<float> first;
+    double peak = 0.0;
     written.write(opts->out, [&](const std::string& f) {
-      first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f);
+      first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f, peak);
     });
+    warnIfClips(opts->out, peak, "lower --gain");
     const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
                                                    kSpectrogramWindow, kSpectrogramHop);
     SpectrogramPlotOptions po;

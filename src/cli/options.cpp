@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <limits>
 
 #include "diffray/cli/commands.h"
@@ -224,6 +226,16 @@ void commitAndAnnounce(OutputFiles& outputs) {
 
 void warnOf(const std::string& warning) {
   if (!warning.empty()) std::cerr << "diffray: warning: " << core::oneLine(warning) << "\n";
+}
+
+double dbfs(double peak) { return peak > 0.0 ? 20.0 * std::log10(peak) : -std::numeric_limits<double>::infinity(); }
+
+void warnIfClips(const std::string& path, double peak, const std::string& remedy) {
+  if (!(peak > 1.0)) return;
+  std::ostringstream line;
+  line << core::oneLine(path) << " peaks at " << std::showpos << std::fixed << std::setprecision(1) << dbfs(peak)
+       << " dBFS, above full scale: it will clip when played or converted to fixed point (" << remedy << ")";
+  warnOf(line.str());
 }
 
 bool isAnyOf(const std::string& path, const std::vector<std::string>& files) {

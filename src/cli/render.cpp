@@ -1,7 +1,8 @@
 // `diffray render SCENE.json -o OUT.png [--photons N | --spp N] [--seed S] [--threads T] [--exposure E]
 // [--float pfm|exr] [--csv FILE]`: light-traces a light scene (rooms/light/README.md, render/light_tracer.h)
 // and writes OUT.png (sRGB, 8 bit), OUT.pfm or OUT.exr (linear sRGB floats, radiance units), OUT.json
-// (photons, seed, seconds, negative-energy fractions, energy balance, the files written) and, with --csv,
+// (photons, seed, seconds, negative-energy fractions, energy balance, the files written; OUT.render.json
+// when OUT.json is the scene itself) and, with --csv,
 // every pixel's radiance, standard error, XYZ and linear sRGB. Every output is written atomically, and all
 // are checked before the render starts; bad input is one line and exit 2.
 #include <chrono>
@@ -32,11 +33,20 @@ struct RenderCliOptions {
   bool seed_given = false;
 };
 
+/// The sidecar: OUT.json, or OUT.render.json when OUT.json is the scene itself (-o cd.png beside cd.json).
+std::string sidecarOf(const RenderCliOptions& o) {
+  const std::string plain = withExtension(o.out, ".json");
+  return isAnyOf(plain, {o.scene}) ? withExtension(o.out, ".render.json") : plain;
+}
+
 /// Every output (PNG, float image, sidecar, CSV), checked before the scene is even read.
 void checkOutput(const RenderCliOptions& o) {
   checkOutputFile(o.out, ".png");
   if (!o.csv.empty()) checkOutputFile(o.csv, ".csv");
-  checkOutputFiles({o.out, withExtension(o.out, ".json"), withExtension(o.out, "." + o.float_format), o.csv}, {o.scene});
+  checkOutputFiles({o.out, sidecarOf(o), withExtension(o.out, "." + o.float_format), o.csv}, {o.scene});
+  if (sidecarOf(o) != withExtension(o.out, ".json"))
+    std::cerr << "diffray: note: " << withExtension(o.out, ".json") << " is the scene, so the sidecar is "
+              << sidecarOf(o) << "\n";
 }
 
 }  // namespace
@@ -47,7 +57,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
       "render", "Render a light scene (rooms/light/README.md) by spectral light tracing with WBSDF occluders: "
                 "writes OUT.png, OUT.pfm or OUT.exr (linear floats) and OUT.json.");
   sub->add_option("scene", o->scene, "light scene file (JSON)")->check(inputPathValidator())->required();
-  sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it)")
+  sub->add_option("-o,--output", o->out, "output PNG (the float image and .json go beside it; the sidecar is OUT.render.json when OUT.json is the scene)")
       ->check(outputPathValidator())
       ->required();
   auto* photons_opt = sub->add_option("--photons", o->photons, "photons to trace (default: the scene's render.photons)")
@@ -122,7 +132,7 @@ Runner addRenderCommand(CLI::App& app, CommonOptions& common) {
                           {"evanescent", r.evanescent / p},
                           {"escaped", r.escaped / p},
                           {"bounce_limit", r.bounce_limit / p}}}};
-    written.write(withExtension(o->out, ".json"), [&](const std::string& f) {
+    written.write(sidecarOf(*o), [&](const std::string& f) {
       core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << "\n"; });
     });
     commitAndAnnounce(written);

@@ -422,8 +422,9 @@ std::string metricsTable(const core::Bands& bands, const std::vector<BandMetrics
            (u ? kFlags[static_cast<int>(u->flag())] : "") + "\n";
   }
   if (missing)
-    out += "-: not measurable. T20, T30 and EDT need a decay (range dB) of 25, 35 and 10 dB, and 10 dB more "
-           "when it meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms.\n";
+    out += "-: not measurable. T20, T30 and EDT need the decay to fall 25, 35 and 10 dB, and 10 dB more when it "
+           "meets a noise floor (ISO 3382-1); C50, C80 need energy after 50, 80 ms. range dB: how far it falls "
+           "before a noise floor or the end (and, traced, where the rays resolve its level to 1 dB; impulse/README.md).\n";
   if (limited_any)
     out += "*: within the reach of the band's analysis filter: the exponential decay that reads this way has a true "
            "value more than one JND away (ISO 3382-1 Annex A: 5 % for T and EDT, 1 dB for C, 0.05 for D50, 10 ms for "

@@ -31,6 +31,22 @@ std::string withUnit(Figure f, double v) {
   return text;
 }
 
+/// The Monte-Carlo limit of a decay: the level's standard error at which the curve stops being read, one
+/// JND of a level (1 dB, as for G and the clarities in ISO 3382-1 Table A.1).
+constexpr double kLevelSeLimitDb = 1.0;
+
+/// The Schroeder curve of a histogram at each bin's start, dB re its total; -inf once nothing positive
+/// is left (and all -inf when the total is not positive).
+std::vector<double> schroederLevels(const std::vector<double>& e) {
+  std::vector<double> tail(e.size(), 0.0);
+  double acc = 0.0;
+  for (std::size_t i = e.size(); i-- > 0;) tail[i] = acc += e[i];
+  std::vector<double> level(e.size(), -HUGE_VAL);
+  if (e.empty() || !(tail[0] > 0.0)) return level;
+  for (std::size_t i = 0; i < e.size() && tail[i] > 0.0; ++i) level[i] = 10.0 * std::log10(tail[i] / tail[0]);
+  return level;
+}
+
 /// The jackknife standard error of the replicates' finite values (NaN with fewer than two).
 double jackknifeSe(const std::vector<double>& theta) {
   double mean = 0.0;
@@ -166,6 +182,9 @@ std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response) {
       for (std::size_t i = 0; i < traced_sum[b].size(); ++i) traced_sum[b][i] += batch[b][i];
   // theta[b][figure][k]; the decay range as an eighth figure.
   std::vector<std::array<std::vector<double>, 8>> theta(static_cast<std::size_t>(nb));
+  // Per band and bin edge, the replicates' Schroeder levels: their sum, sum of squares and count (finite ones).
+  std::vector<std::vector<double>> level_sum(static_cast<std::size_t>(nb)), level_sq(static_cast<std::size_t>(nb));
+  std::vector<std::vector<int>> level_n(static_cast<std::size_t>(nb));
   const std::vector<BandMetrics> whole = metricsFromHistograms(total, response.bin_s);
   for (std::size_t k = 0; k < nk; ++k) {
     const double n_k = response.batch_weights[k];
@@ -185,6 +204,15 @@ std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response) {
         if (!std::isfinite(v) && std::isfinite(whole[b].value(f))) ++out[b].unmeasurable[static_cast<std::size_t>(f)];
       }
       theta[b][7].push_back(m[b].decay_range_db);
+      const std::vector<double> level = schroederLevels(rep[b]);
+      level_sum[b].resize(level.size(), 0.0);
+      level_sq[b].resize(level.size(), 0.0);
+      level_n[b].resize(level.size(), 0);
+      for (std::size_t i = 0; i < level.size() && std::isfinite(level[i]); ++i) {
+        level_sum[b][i] += level[i];
+        level_sq[b][i] += level[i] * level[i];
+        ++level_n[b][i];
+      }
     }
   }
   for (int b = 0; b < nb; ++b) {
@@ -196,6 +224,19 @@ std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response) {
       u.se[i] = u.unmeasurable[i] ? kNaN : jackknifeSe(theta[b][i]);
     }
     u.decay_range_se = jackknifeSe(theta[b][7]);
+    // How deep the Schroeder curve reaches before the jackknife SE of its level exceeds kLevelSeLimitDb:
+    // below that depth the decay is carried by too few rays to be read.
+    const std::vector<double> level = schroederLevels(total[static_cast<std::size_t>(b)]);
+    double depth = 0.0;
+    for (std::size_t i = 0; i < level.size() && i < level_n[b].size() && std::isfinite(level[i]); ++i) {
+      const double n = level_n[b][i];
+      if (n < u.replicates) break;  // some replicate has no energy left here
+      const double mean = level_sum[b][i] / n;
+      const double var = std::max(0.0, level_sq[b][i] / n - mean * mean) * (n - 1.0);  // jackknife: (n−1)/n·Σ(θ−θ̄)²
+      if (std::sqrt(var) > kLevelSeLimitDb) break;
+      depth = std::max(depth, -level[i]);
+    }
+    if (u.replicates >= 2) u.monte_carlo_range_db = depth;
   }
   return out;
 }
@@ -207,6 +248,12 @@ std::vector<BandUncertainty> markMetrics(std::vector<BandMetrics>& metrics, cons
   for (std::size_t b = 0; b < u.size(); ++b) {
     BandUncertainty& m = out[b];
     BandMetrics& bm = metrics[b];
+    // The decay range reaches no deeper than the Monte-Carlo noise lets the curve be read; the standard
+    // error of the curve's own depth says nothing about that limit, so the capped range has none.
+    if (std::isfinite(m.monte_carlo_range_db) && bm.decay_range_db > m.monte_carlo_range_db) {
+      bm.decay_range_db = m.monte_carlo_range_db;
+      m.decay_range_se = kNaN;
+    }
     if (m.negative_energy) {
       BandMetrics none;
       none.shorter_than_filter = bm.shorter_than_filter;

@@ -6,14 +6,19 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
+#include <map>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "bindings.h"
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/diffray.h"
+#include "diffray/ir/uncertainty.h"
 #include "diffray/render/film.h"
 #include "diffray/render/light_tracer.h"
 #include "diffray/room/checks.h"
@@ -54,6 +59,17 @@ std::uint64_t seedOf(const py::object& value, std::uint64_t fallback) {
   }
 }
 
+// Each line as a Python warning (UserWarning), as the CLI prints "diffray: warning: ..." on stderr. Raises
+// what Python raises when the warnings filter turns them into errors.
+void warnEach(const std::vector<std::string>& lines) {
+  for (const std::string& line : lines)
+    if (PyErr_WarnEx(PyExc_UserWarning, core::oneLine(line).c_str(), 1) < 0) throw py::error_already_set();
+}
+
+// Thrown from the progress callback to stop a simulation that Ctrl-C (or another signal Python raises on)
+// interrupted; the Python exception is already set.
+struct Interrupted {};
+
 std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& rays, const py::object& seed,
                                      const std::string& diffraction, int diffraction_order, const py::object& ism_order,
                                      double length, int threads, bool progress) {
@@ -76,15 +92,41 @@ std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& r
   so.max_diffractions = diffraction_order;
   room::checkSynthesis(room, length, room.output.sample_rate_hz,
                        (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
-  py::gil_scoped_release release;
-  core::ThreadLimit limit(threads);
-  std::unique_ptr<core::Progress> bar;
-  if (progress) {
-    bar = std::make_unique<core::Progress>("simulate " + room.name, so.rays * room.sources.size());
-    so.on_progress = [&bar](std::uint64_t n) { bar->add(n); };
+  warnEach(scene.warnings());
+  // Python runs its signal handlers only in the main thread, with the GIL: the progress callback, when the
+  // calling thread runs it (it takes its share of the work), holds the GIL for a moment and lets Python
+  // check; a KeyboardInterrupt (or any exception a handler raises) then stops every thread's work.
+  // At most every 50 ms, so that a busy Python thread elsewhere does not hold the tracer up at the GIL.
+  std::atomic<bool> interrupted{false};
+  const std::thread::id caller = std::this_thread::get_id();
+  auto last_check = std::chrono::steady_clock::now();
+  {
+    py::gil_scoped_release release;
+    core::ThreadLimit limit(threads);
+    std::unique_ptr<core::Progress> bar;
+    if (progress) bar = std::make_unique<core::Progress>("simulate " + room.name, so.rays * room.sources.size());
+    so.on_progress = [&bar, &interrupted, &last_check, caller](std::uint64_t n) {
+      if (bar) bar->add(n);
+      if (interrupted.load()) throw Interrupted{};
+      if (std::this_thread::get_id() != caller) return;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_check < std::chrono::milliseconds(50)) return;
+      last_check = now;  // only the calling thread gets here
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        interrupted = true;
+        throw Interrupted{};
+      }
+    };
+    try {
+      out->sim = transport::simulateRoom(room, so);
+    } catch (const Interrupted&) {
+      interrupted = true;
+    }
+    if (bar && !interrupted) bar->finish();
   }
-  out->sim = transport::simulateRoom(room, so);
-  if (bar) bar->finish();
+  if (interrupted) throw py::error_already_set();
+  warnEach(out->sim.warnings);
   return out;
 }
 
@@ -121,25 +163,47 @@ py::array_t<double> impulseResponse(const Simulation& s, long listener, const py
   return py::array_t<double>(static_cast<py::ssize_t>(ir.samples.size()), ir.samples.data());
 }
 
-py::object figure(double v) { return std::isnan(v) ? py::object(py::none()) : py::object(py::float_(v)); }
+// The figures of `diffray ir --json`'s "bands" under Python's names (T20, ..., Ts); the other keys as they are.
+py::object pythonNames(const py::object& value) {
+  static const std::map<std::string, std::string> kNames{{"t20", "T20"}, {"t30", "T30"}, {"edt", "EDT"},
+                                                         {"c50", "C50"}, {"c80", "C80"}, {"d50", "D50"},
+                                                         {"ts", "Ts"}};
+  const auto rename = [](const std::string& key) {
+    const auto it = kNames.find(key);
+    return it == kNames.end() ? key : it->second;
+  };
+  if (py::isinstance<py::dict>(value)) {
+    py::dict out;
+    for (const auto& item : value.cast<py::dict>())
+      out[py::str(rename(item.first.cast<std::string>()))] = pythonNames(py::reinterpret_borrow<py::object>(item.second));
+    return std::move(out);
+  }
+  if (py::isinstance<py::list>(value)) {
+    py::list out;
+    for (const auto& item : value.cast<py::list>())
+      out.append(py::isinstance<py::str>(item) ? py::object(py::str(rename(item.cast<std::string>())))
+                                               : py::reinterpret_borrow<py::object>(item));
+    return std::move(out);
+  }
+  return value;
+}
 
+// What `diffray ir` computes per listener from the histogram: the figures, their jackknife standard errors
+// and marks (ir/uncertainty.h), and its warnings on noisy or negative-energy bands (as Python warnings).
 py::dict metrics(const Simulation& s, long listener) {
-  listenerOf(s, listener);
-  const auto figures = diffray::metrics(s.sim, static_cast<std::size_t>(listener));
+  const ir::EnergyResponse& response = listenerOf(s, listener);
+  std::vector<ir::BandMetrics> figures = diffray::metrics(s.sim, static_cast<std::size_t>(listener));
+  const std::vector<ir::BandUncertainty> marks = ir::markMetrics(figures, ir::jackknifeMetrics(response));
+  warnEach(ir::uncertaintyWarnings(s.room.listeners[static_cast<std::size_t>(listener)].name, s.room.bands,
+                                   figures, marks));
+  nlohmann::ordered_json bands = ir::metricsJson(s.room.bands, figures);
+  ir::addUncertaintyJson(bands, s.room.bands, marks);
+  const py::object loads = py::module_::import("json").attr("loads");
   py::dict out;
   for (int b = 0; b < s.room.bands.size(); ++b) {
-    const ir::BandMetrics& m = figures[static_cast<std::size_t>(b)];
-    py::dict d;
-    d["T20"] = figure(m.t20);
-    d["T30"] = figure(m.t30);
-    d["EDT"] = figure(m.edt);
-    d["C50"] = figure(m.c50);
-    d["C80"] = figure(m.c80);
-    d["D50"] = figure(m.d50);
-    d["Ts"] = figure(m.ts);
-    d["decay_range_db"] = figure(m.decay_range_db);
     const double hz = s.room.bands.nominalHz(b);
-    out[hz == std::floor(hz) ? py::object(py::int_(static_cast<long>(hz))) : py::object(py::float_(hz))] = d;
+    out[hz == std::floor(hz) ? py::object(py::int_(static_cast<long>(hz))) : py::object(py::float_(hz))] =
+        pythonNames(loads(bands[s.room.bands.label(b)].dump()));
   }
   return out;
 }
@@ -209,9 +273,11 @@ void bindSimulation(py::module_& m) {
            "`sample_rate` Hz (default: the room's, .sample_rate); the same samples as channel `listener` of "
            "`diffray ir --seed SEED`.")
       .def("metrics", &metrics, py::arg("listener") = 0,
-           "ISO 3382-1 figures from the listener's energy histogram: {band Hz: {T20, T30, EDT (s), C50, C80 "
-           "(dB), D50, Ts (s), decay_range_db}}, None where a figure cannot be measured; those of "
-           "`diffray ir --json` (bands).")
+           "ISO 3382-1 figures from the listener's energy histogram, those of `diffray ir --json` (bands): "
+           "{band Hz: {T20, T30, EDT (s), C50, C80 (dB), D50, Ts (s), decay_range_db, se: {figure: standard "
+           "error}, flag: 'ok' | 'noisy' | 'negative_energy', noisy: [figures], not_available_negative_energy: "
+           "[figures], negative_energy_fraction}}, None where a figure cannot be measured. Noisy or "
+           "negative-energy bands also give a UserWarning, as the CLI warns.")
       .def_property_readonly("bin_width", [](const Simulation& s) { return s.sim.listeners.at(0).bin_s; },
                              "Histogram bin width, s.")
       .def_property_readonly("length", [](const Simulation& s) { return s.sim.length_s; }, "Simulated length, s.")
@@ -235,7 +301,8 @@ rays: per source (None: the room's output.rays); seed: None = the room's output.
 the same result as `diffray ir --seed`. diffraction: "none", "utd" or "wbsdf" (diffraction_order: WBSDF
 scatterings per path). ism_order: image-source order (None: the room's; -1: rays only). length: IR length
 in s (0: the room's, or until -60 dB). threads: 0 = every core. progress: a bar on stderr (a terminal
-only). Releases the GIL while it runs.)");
+only). Releases the GIL while it runs; Ctrl-C stops it (KeyboardInterrupt). The scene's and the run's
+warnings (the CLI's "diffray: warning: ...") are UserWarnings.)");
   m.def("render", &render, py::arg("path"), py::arg("photons") = py::none(), py::arg("seed") = py::none(),
         py::arg("threads") = 0, py::arg("progress") = true,
         "Renders a light scene (rooms/light/README.md) as `diffray render` does: the linear sRGB image (float32, "

@@ -51,6 +51,12 @@ def test_same_numbers_as_the_cli(tmp_path, cli):
             for key, name in [("t20", "T20"), ("t30", "T30"), ("edt", "EDT"), ("c50", "C50"), ("c80", "C80"),
                               ("d50", "D50"), ("ts", "Ts")]:
                 assert mine[int(band)][name] == figures[key], (index, band, key)
+            # the range, the standard errors and the marks of the JSON, under Python's names
+            assert mine[int(band)]["decay_range_db"] == figures["decay_range_db"], (index, band)
+            names = dict(t20="T20", t30="T30", edt="EDT", c50="C50", c80="C80", d50="D50", ts="Ts")
+            assert mine[int(band)]["se"] == {names.get(k, k): v for k, v in figures["se"].items()}, (index, band)
+            assert mine[int(band)]["flag"] == figures["flag"], (index, band)
+            assert mine[int(band)].get("noisy", []) == [names[k] for k in figures.get("noisy", [])], (index, band)
         # the WAV holds float32: the Python samples rounded to float32 are the same bits
         ir = sim.impulse_response(index)
         assert np.array_equal(ir.astype(np.float32), samples[:, index])

@@ -1,5 +1,5 @@
 #pragma once
-// Audio file I/O through libsndfile. An AudioBuffer holds interleaved samples in double, on diffray's convention
+// Audio file I/O: reading through libsndfile, writing 32-bit float WAV (audio/wav_float_format.h). An AudioBuffer holds interleaved samples in double, on diffray's convention
 // that Σ p[n]² over a span is the energy (J/m²) of that span: no normalisation is applied,
 // so a float WAV round-trips bit-exactly (float → double → float). Reading accepts anything libsndfile
 // reads (WAV, AIFF, FLAC, …; integer formats are scaled to [−1, 1) as libsndfile does). Writing produces
@@ -34,12 +34,12 @@ AudioBuffer readAudio(const std::string& path, std::string* warning = nullptr);
 
 /// Writes `audio` as a 32-bit float WAV, atomically. Throws core::InputError naming `path` for NaN/Inf
 /// samples or samples beyond the float range (checked before anything is written), for a sample rate or
-/// channel count libsndfile refuses, and when the file cannot be written.
+/// channel count a WAV cannot hold (1..1024 channels, a 32-bit byte rate), and when the file cannot be written.
 void writeWavFloat(const std::string& path, const AudioBuffer& audio);
 
 /// The largest float32 payload a WAV file holds: its RIFF and data chunk sizes are unsigned 32-bit fields,
 /// so frames·channels·4 bytes plus the header (a few dozen bytes; 1 KiB reserved) must stay below 4 GiB.
-/// (libsndfile writes no RF64 here; a larger plain WAV would carry wrapped sizes that readers refuse.)
+/// (no RF64 is written; a larger plain WAV would carry wrapped sizes that readers refuse.)
 inline constexpr double kMaxWavDataBytes = 4294967295.0 - 1024.0;
 /// Throws core::InputError naming `field` when `frames` × `channels` float32 samples would not fit in one
 /// WAV file (kMaxWavDataBytes), with the length that would fit at `sample_rate_hz`. For a check before any
@@ -81,7 +81,7 @@ class AudioReader {
 /// commit(). Without commit() (an exception on the way) the temporary is removed in the destructor.
 class WavWriter {
  public:
-  /// Throws core::InputError naming `path` for a layout libsndfile refuses or a file it cannot create.
+  /// Throws core::InputError naming `path` for a layout a WAV cannot hold or a file it cannot create.
   WavWriter(const std::string& path, int sample_rate_hz, int channels);
   ~WavWriter();
   WavWriter(const WavWriter&) = delete;
@@ -98,9 +98,11 @@ class WavWriter {
   std::string path_;
   std::string tmp_;
   core::TempRegistration registered_;  ///< tmp_, deleted if the program is interrupted before commit()
-  void* file_ = nullptr;  ///< SNDFILE*
+  void* file_ = nullptr;  ///< std::FILE*
   int channels_ = 0;
+  int rate_hz_ = 0;
   long written_ = 0;
+  std::string block_;  ///< one block's little-endian bytes, reused
 };
 
 }  // namespace diffray::audio

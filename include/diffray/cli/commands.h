@@ -109,6 +109,11 @@ void commitAndAnnounce(OutputFiles& outputs);
 
 /// Prints "diffray: warning: W" on stderr (one line) unless `warning` is empty.
 void warnOf(const std::string& warning);
+/// Peak level in dBFS of a linear `peak` (full scale 1), -inf for silence.
+double dbfs(double peak);
+/// A float WAV keeps samples above full scale, but players and fixed-point conversions clip them: when `peak`
+/// (linear) exceeds 1, one warning naming `path`, the peak in dBFS and `remedy` (what lowers it).
+void warnIfClips(const std::string& path, double peak, const std::string& remedy);
 
 /// `path` with its extension replaced by `ext` (".json").
 /// Whether `path` names the same file as one of `files` (files that do not exist match nothing).

@@ -44,7 +44,8 @@ struct BandMetrics {
   double d50 = kNaN;                          ///< fraction, 0 … 1
   double ts = kNaN;                           ///< centre time, s after the onset
   /// How far (dB) the Schroeder curve falls before it ends or meets the noise floor: T20, T30 and EDT need
-  /// 25, 35 and 10 dB, and 10 dB more when it meets a noise floor.
+  /// 25, 35 and 10 dB, and 10 dB more when it meets a noise floor. For a traced response markMetrics
+  /// (uncertainty.h) caps it where the Monte-Carlo noise stops the curve from being read.
   double decay_range_db = kNaN;
   /// Where the noise truncation stopped the integral, s after the onset (NaN: not truncated).
   double truncation_s = kNaN;

@@ -41,6 +41,10 @@ struct BandUncertainty {
   enum class Flag { Ok, Noisy, NegativeEnergy };
   std::array<double, 7> se{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};  ///< per Figure; NaN: none
   double decay_range_se = kNaN;      ///< dB
+  /// How far (dB) the band's Schroeder curve falls before the jackknife standard error of its level
+  /// exceeds 1 dB (a level's JND): the deepest decay the rays resolve. NaN without batches. markMetrics
+  /// caps BandMetrics::decay_range_db at it.
+  double monte_carlo_range_db = kNaN;
   std::array<int, 7> unmeasurable{};  ///< replicates without the figure while the whole has it
   int replicates = 0;                 ///< batches used (0 or 1: no standard errors)
   double energy = 0.0;                ///< Σ energy of the band (traced + exact), J/m²
@@ -64,7 +68,8 @@ struct BandUncertainty {
 /// are the histogram's either way, the marks follow the figures given). Without batches (fewer than two
 /// used) there are no standard errors, and only the negative-energy marks.
 std::vector<BandUncertainty> jackknifeMetrics(const EnergyResponse& response);
-/// Marks of `metrics` from the standard errors of `u` (a copy of u with noisy[] and negative[] set for
+/// Marks of `metrics` from the standard errors of `u`, and their decay_range_db capped at
+/// u.monte_carlo_range_db (then without decay_range_se) (a copy of u with noisy[] and negative[] set for
 /// these figures, and no standard error for a figure they do not give); the figures that negative energy
 /// makes unavailable (all of a band that sums negative) are set to NaN in `metrics` (never a plain number).
 /// `histogram_marks`: for the metrics of a WAV synthesized from the histogram (which reads negative bins
