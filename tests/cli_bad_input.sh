@@ -152,6 +152,20 @@ b = s['bands']['1000']
 sys.exit(0 if abs(s['volume_m3'] - 210) < 1e-6 and b['eyring_s'] < b['sabine_s'] < b['traced_t30_s'] and 'note' in s else 1)"; then
   passes=$((passes + 1)); else echo "FAIL: ir: Sabine/Eyring beside the traced T30"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi
 rm -f "$tmp"/stat.*
+# metrics --spatial: the shoebox's two listeners as a two-channel file give IACC per band (and averages, in
+# the table and the JSON); a file of the wrong channel count is one line and nothing else.
+"$bin" ir "$rooms/shoebox.json" --rays 20000 -o "$tmp/two.wav" >/dev/null 2>&1
+if "$bin" metrics "$tmp/two.wav" --spatial binaural >"$tmp/sp.txt" 2>"$tmp/stderr" &&
+   grep -q "IACC_E3 (500 Hz - 2 kHz)" "$tmp/sp.txt" && grep -q "^ *1000 *0\.[0-9]* *0\.[0-9]*$" "$tmp/sp.txt" &&
+   "$bin" metrics "$tmp/two.wav" --spatial binaural --json | python3 -c "
+import json, sys
+s = json.load(sys.stdin)['spatial']
+sys.exit(0 if s['format'] == 'binaural' and 0 <= s['bands']['1000']['iacc_e'] <= 1.01 and 'iacc_e3' in s else 1)"; then
+  passes=$((passes + 1)); else echo "FAIL: metrics --spatial binaural"; sed 's/^/    /' "$tmp/sp.txt" "$tmp/stderr"; fails=$((fails + 1)); fi
+expect_error "metrics --spatial ambix on two channels" metrics "$tmp/two.wav" --spatial ambix
+expect_error "metrics --spatial binaural on one channel" metrics "$tmp/ok.wav" --spatial binaural
+expect_error "metrics --spatial of an unknown kind" metrics "$tmp/two.wav" --spatial stereo
+rm -f "$tmp"/two.* "$tmp"/sp.txt
 
 # Run in the room file's folder with the default output: ROOM.ir.wav, .ir.json, .ir.csv, the room file untouched.
 cp "$tmp/in/s1.json" "$tmp/in/keep.json"

@@ -1,6 +1,7 @@
 // `diffray metrics IR.wav`: ISO 3382-1 room metrics per octave (or third-octave) band of any impulse
 // response libsndfile reads, measured ones included (the noise floor is found and cut off: ir/metrics.h).
-// Prints a table, or with --json {"file", "sample_rate_hz", "channels", "channel", "bands": {…}}.
+// Prints a table, or with --json {"file", "sample_rate_hz", "channels", "channel", "bands": {…}}; with
+// --spatial ambix or binaural also the spatial figures (ir/spatial_metrics.h) under "spatial".
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include "diffray/core/memory.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/ir/metrics.h"
+#include "diffray/ir/spatial_metrics.h"
 
 namespace diffray::cli {
 
@@ -23,6 +25,7 @@ struct MetricsOptions {
   std::string file;
   std::string bands = "octave";
   int channel = 1;
+  std::string spatial;  ///< "", "ambix" or "binaural"
 };
 
 /// The default bands (63 Hz – 8 kHz octaves, 50 Hz – 10 kHz thirds) without those whose filters would
@@ -86,6 +89,11 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--channel", o->channel, "channel to analyse, from 1")
       ->transform(wholeNumberValidator())
       ->capture_default_str();
+  sub->add_option("--spatial", o->spatial,
+                  "also the spatial figures (ISO 3382-1 A.3): ambix = J_LF and J_LFC from a first-order AmbiX file "
+                  "(ACN, SN3D: W, Y, Z, X; its front toward the source), binaural = IACC_E and IACC_L from a "
+                  "two-channel file (left, right)")
+      ->check(CLI::IsMember({"ambix", "binaural"}));
   return [o, &common]() {
     checkAnalysisMemory(o->file, o->bands);
     std::string cut;
@@ -100,7 +108,18 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
     if (std::all_of(signal.begin(), signal.end(), [](double v) { return v == 0.0; }))
       throw core::InputError(o->file, "every sample of channel " + std::to_string(o->channel) +
                                           " is zero: there is no response to measure");
+    const bool ambix = o->spatial == "ambix";
+    if (ambix && audio.channels < 4)
+      throw core::InputError(o->file, "--spatial ambix needs a first-order AmbiX file of at least 4 channels (W, Y, Z, "
+                                      "X), it has " + std::to_string(audio.channels));
+    if (o->spatial == "binaural" && audio.channels != 2)
+      throw core::InputError(o->file, "--spatial binaural needs a two-channel file (left, right), it has " +
+                                          std::to_string(audio.channels));
     const auto metrics = ir::metricsFromSignal(signal, audio.sample_rate_hz, bands);
+    std::vector<ir::SpatialBandMetrics> spatial;
+    if (ambix) spatial = ir::lateralFractions(audio.channel(0), audio.channel(1), audio.sample_rate_hz, bands);
+    else if (!o->spatial.empty())
+      spatial = ir::interauralCrossCorrelation(audio.channel(0), audio.channel(1), audio.sample_rate_hz, bands);
     if (common.json) {
       nlohmann::ordered_json j{{"file", o->file},
                        {"sample_rate_hz", audio.sample_rate_hz},
@@ -108,11 +127,18 @@ Runner addMetricsCommand(CLI::App& app, CommonOptions& common) {
                        {"channel", o->channel},
                        {"bands", ir::metricsJson(bands, metrics)},
                        {"standard_errors", kNoStandardErrors}};
+      if (!o->spatial.empty()) {
+        j["spatial"] = ir::spatialJson(bands, spatial, ambix);
+        j["spatial"]["format"] = o->spatial;
+      }
       std::cout << jsonText(j) << std::endl;
     } else {
       std::cout << o->file << ": " << audio.frames() << " frames at " << audio.sample_rate_hz << " Hz, channel "
                 << o->channel << " of " << audio.channels << "\n"
                 << ir::metricsTable(bands, metrics) << kNoStandardErrors << "\n";
+      if (!o->spatial.empty())
+        std::cout << "\n" << (ambix ? "lateral fractions (W and Y of the AmbiX file)" : "interaural cross-correlation")
+                  << ":\n" << ir::spatialTable(bands, spatial, ambix);
     }
     return 0;
   };

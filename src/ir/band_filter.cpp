@@ -160,4 +160,13 @@ std::vector<std::vector<double>> BandFilter::split(const std::vector<double>& x)
   return out;
 }
 
+std::vector<double> withLeadAndNoMean(const std::vector<double>& x, long lead) {
+  double mean = 0.0;
+  for (double v : x) mean += v;
+  mean /= static_cast<double>(std::max<std::size_t>(1, x.size()));
+  std::vector<double> out(static_cast<std::size_t>(lead) + x.size(), 0.0);
+  for (std::size_t n = 0; n < x.size(); ++n) out[static_cast<std::size_t>(lead) + n] = x[n] - mean;
+  return out;
+}
+
 }  // namespace diffray::ir

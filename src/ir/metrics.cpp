@@ -284,12 +284,7 @@ std::vector<BandMetrics> metricsFromSignal(const std::vector<double>& p, double 
   // 63 Hz and Ts long, against the same response with a pre-delay). A DC offset would turn into steps at
   // both ends, whose low-frequency energy reads as a noise floor (a 0.5 % offset cut the 63 Hz decay range
   // from 88 to 56 dB). The lead shifts every time equally; metrics count from the onset.
-  const long lead = filter.ringSamples();
-  double mean = 0.0;
-  for (double v : p) mean += v;
-  mean /= static_cast<double>(std::max<size_t>(1, p.size()));
-  std::vector<double> padded(static_cast<size_t>(lead) + p.size(), 0.0);
-  for (size_t n = 0; n < p.size(); ++n) padded[static_cast<size_t>(lead) + n] = p[n] - mean;
+  const std::vector<double> padded = withLeadAndNoMean(p, filter.ringSamples());
   std::vector<std::vector<double>> energy = filter.split(padded);
   // The onset of the band-summed signal (p inside the bands' range): a band on its own smears the start
   // over ~1/bandwidth (22 ms at 63 Hz), which would move time zero by several ms.

@@ -47,6 +47,11 @@ class RealFft {
   void* inverse_plan_ = nullptr;
 };
 
+/// x with its mean removed and `lead` zeros in front: how a response is prepared for the zero-phase band
+/// filters (a pre-delay of their ringing time, so nothing ahead of an arrival at sample 0 is lost, and no
+/// DC offset whose steps at both ends would read as a low-frequency noise floor).
+std::vector<double> withLeadAndNoMean(const std::vector<double>& x, long lead);
+
 /// The smallest length ≥ n whose factors are 2, 3, 5 and 7 only (fast for FFTW).
 int fastFftLength(long n);
 
