@@ -7,7 +7,8 @@
 // Diffraction point (apex): Fermat's principle on each finite edge (the shortest path through points of the
 // edges, the Keller cone); a path whose apex falls outside an edge segment is not a path. Every leg is
 // checked with the room's intersector (openings let sound through), starting and ending a small offset
-// (1e-4 × the room's extent) off edges and faces into the air. Pressure (Kouyoumjian–Pathak, coefficient.h):
+// off edges and faces into the air: offsetAt(p), absolute and set by the point's own float rounding (128
+// float ulps of |p|, at least 10 µm), so that nothing depends on how large the scene is. Pressure (Kouyoumjian–Pathak, coefficient.h):
 //   first order   p = (e^{−iks′}/s′) · D(L) · √(s′/(s(s′ + s))) · e^{−iks},  L = s′s sin²β0/(s′ + s);
 //   second order  p = (e^{−iks′}/s′) · D1(L1) · √(s′/(s1(s′ + s1))) · D2(L2) · √(ρ/(s2(ρ + s2))) · e^{−ik(s1+s2)},
 //                 ρ = s′ + s1, L1 = s′s1 sin²β1/(s′ + s1), L2 = ρ s2 sin²β2/(ρ + s2):
@@ -111,13 +112,14 @@ class UtdModel {
   /// triangle test missed its reflection point on the edge (listener on that face's reflection boundary).
   void halveReflection(int e, int face, const core::Vec3& s, const core::Vec3& r, std::vector<Path>& out) const;
   core::Vec3 offEdge(int e, const core::Vec3& apex) const;
+  /// The offset (m) of a point at p off an edge or face: max(10 µm, 128·FLT_EPSILON·max|p_i|).
+  static double offsetAt(const core::Vec3& p);
 
   const room::Room& room_;
   const transport::RoomGeometry& geometry_;
   UtdOptions options_;
   std::vector<Edge> edges_;
   std::vector<char> opening_;  ///< per material
-  double offset_m_ = 1e-4;
   core::Vec3 centre_{0, 0, 0};  ///< of the mesh's bounding box
 };
 
