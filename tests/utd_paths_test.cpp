@@ -284,3 +284,29 @@ TEST(UtdPaths, DoesNotDependOnTheSceneSize) {
   EXPECT_NEAR(level_utd, level_exact, 0.5);
   EXPECT_LT(std::abs(with_speck - alone), 1e-9 * std::abs(alone));
 }
+
+TEST(UtdPaths, NoGroundReflectionThroughTheFootOfABarrier) {
+  // A 4 × 2 m rigid plate standing on a rigid ground (z = 0), the source 2 m before it and the listeners
+  // 2 m behind it at the source's height: the ground reflection point lies on the plate's foot, where the
+  // plate meets the ground, so the specular ground path goes through the plate and must not count. With
+  // it the listener reads about 0 dB re free field; without, the plate's shadow (well below −5 dB).
+  dr::Room room;
+  const int m = rigidMaterial(room);
+  addPlate(room, Vec3(-50, -50, 0), Vec3(100, 0, 0), Vec3(0, 100, 0), m);  // the ground
+  addPlate(room, Vec3(0, -2, 0), Vec3(0, 4, 0), Vec3(0, 0, 2), m);        // the barrier, x = 0
+  const Vec3 s(-2.0, 0.0, 0.5);
+  room.sources.push_back({"S", s, 1.0, {}});
+  const diffray::transport::RoomGeometry geometry(room);
+  const utd::UtdModel model(room, geometry, options(2, true));
+  for (const Vec3& r : {Vec3(2.0, 0.0, 0.5), Vec3(2.0, 0.7, 0.5), Vec3(2.0, -1.2, 0.5)}) {
+    for (const auto& path : model.paths(s, r))
+      EXPECT_FALSE(path.kind == utd::PathKind::Reflection && path.points.size() == 3 &&
+                   std::abs(path.points[1].x()) < 1e-6)
+          << "a reflection through the barrier's foot to " << r.transpose();
+    Complex p = 0.0;
+    for (const auto& path : model.paths(s, r)) p += model.pressure(path, 500.0, kC);
+    const double level = 20.0 * std::log10(std::abs(p) * (r - s).norm());
+    EXPECT_LT(level, -5.0) << r.transpose();
+    std::printf("barrier on ground, listener (%.1f, %.1f, %.1f): %.1f dB re free field at 500 Hz\n", r.x(), r.y(), r.z(), level);
+  }
+}

@@ -86,6 +86,23 @@ double UtdModel::faceReflection(int material, double freq_hz) const {
   return std::sqrt(std::max(0.0, 1.0 - room_.materials[material].absorption[b]));
 }
 
+bool UtdModel::crossesSurfaceAt(const transport::MirrorPlane& reflecting, const Vec3& p, const Vec3& s,
+                                const Vec3& r) const {
+  const double tol = offsetAt(p);
+  for (const auto& other : geometry_.planes()) {
+    if (&other == &reflecting) continue;
+    const double dp = other.normal.dot(p) - other.offset;
+    const double ds = other.normal.dot(s) - other.offset, dr = other.normal.dot(r) - other.offset;
+    if (std::abs(dp) > tol || !(ds * dr < 0.0) || std::abs(ds) <= tol || std::abs(dr) <= tol) continue;
+    for (int t : other.triangles) {
+      if (opening_[room_.mesh.object_of_triangle[t]]) continue;
+      const auto& v = room_.mesh.triangles[t];
+      if (insideTriangle(p, room_.mesh.vertices[v[0]], room_.mesh.vertices[v[1]], room_.mesh.vertices[v[2]])) return true;
+    }
+  }
+  return false;
+}
+
 double UtdModel::offsetAt(const Vec3& p) {
   // Embree holds the scene in float: a coordinate of size |p| is known to FLT_EPSILON·|p|; 128 of those
   // (1.5e-4 m at 10 m, 1.5 cm at 1 km) lift a point clear of that rounding, and 10 µm near the origin.
@@ -141,6 +158,7 @@ void UtdModel::addReflections(const Vec3& s, const Vec3& r, std::vector<Path>& o
       }
     }
     if (tri < 0) continue;
+    if (crossesSurfaceAt(pl, p, s, r)) continue;
     // Visibility only: the reflection point and any point on the plane are lifted by the offset into the air.
     const Vec3 lift = side * offsetAt(p) * pl.normal;
     const Vec3 lifted = p + lift;

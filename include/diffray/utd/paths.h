@@ -112,6 +112,11 @@ class UtdModel {
   /// triangle test missed its reflection point on the edge (listener on that face's reflection boundary).
   void halveReflection(int e, int face, const core::Vec3& s, const core::Vec3& r, std::vector<Path>& out) const;
   core::Vec3 offEdge(int e, const core::Vec3& apex) const;
+  /// Whether the reflection point p (on `reflecting`) lies on another surface that s and r stand on opposite
+  /// sides of, as where a barrier stands on the ground: the specular path then passes through that surface
+  /// at its foot (a visibility test from a point lifted off p cannot see it).
+  bool crossesSurfaceAt(const transport::MirrorPlane& reflecting, const core::Vec3& p, const core::Vec3& s,
+                        const core::Vec3& r) const;
   /// The offset (m) of a point at p off an edge or face: max(10 µm, 128·FLT_EPSILON·max|p_i|).
   static double offsetAt(const core::Vec3& p);
 
