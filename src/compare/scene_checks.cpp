@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "diffray/core/error.h"
 #include "diffray/room/checks.h"
@@ -134,6 +135,39 @@ void checkAimReachesListeners(const room::Room& room, const AimRect& aim) {
       throw core::InputError("--aim", where(l) + " sees source " + s.name +
                                           " directly along a line that misses the occluder's aim rectangle, so no "
                                           "aimed ray reaches it; run without --aim (or move it)");
+  }
+}
+
+void checkAimHasNoReflectors(const room::Room& room) {
+  std::set<std::string> occluder_groups;
+  for (const auto& o : room.occluders) occluder_groups.insert(o.group);
+  // The floor planes that a door's model mirrors (OccluderAxis::mirror_lo): through the lo edge, normal to it.
+  std::vector<std::pair<Vec3, Vec3>> sill_planes;  // point, unit normal
+  for (const auto& o : room.occluders) {
+    if (o.x.mirror_lo) sill_planes.push_back({o.origin_m + o.x.lo_m * o.ex, o.ex});
+    if (o.y.mirror_lo) sill_planes.push_back({o.origin_m + o.y.lo_m * o.ey, o.ey});
+  }
+  const auto& m = room.mesh;
+  double size = 1.0;  // the mesh's largest coordinate, for a plane tolerance in its float rounding's units
+  for (const Vec3& v : m.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
+  const double tol = 1e-6 * size;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const std::string& g = t < room.group_of_triangle.size() ? room.group_of_triangle[t] : std::string();
+    const int mat = m.object_of_triangle[t];
+    if (occluder_groups.count(g) || room.isOpening(mat)) continue;
+    bool reflects = false;
+    for (int b = 0; b < room.bands.size(); ++b) reflects = reflects || room.materials[static_cast<std::size_t>(mat)].absorption[b] < 1.0;
+    if (!reflects) continue;
+    const Vec3 v[3] = {m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]], m.vertices[m.triangles[t][2]]};
+    bool on_sill = false;
+    for (const auto& [p, n] : sill_planes)
+      on_sill = on_sill || (std::abs((v[0] - p).dot(n)) < tol && std::abs((v[1] - p).dot(n)) < tol && std::abs((v[2] - p).dot(n)) < tol);
+    // The screen around the occluder: what it reflects stays on the source's side, where --aim has no
+    // listener (checkAimReachesListeners).
+    if (on_sill || inOccluderPlane(room, {v[0], v[1], v[2], g}, tol)) continue;
+    throw core::InputError("--aim", "surface " + g + " (" + room.materials[static_cast<std::size_t>(mat)].name +
+                                        ") reflects, and aimed rays go straight at the occluder, so the paths that "
+                                        "meet it first would be lost; run without --aim (or make it absorbing)");
   }
 }
 

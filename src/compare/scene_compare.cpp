@@ -144,6 +144,7 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
     if (room.occluders.empty()) out.warnings.push_back("the scene has no occluders: the WBSDF model is plain geometric acoustics");
     if (o.aim) {
       if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
+      checkAimHasNoReflectors(room);
       const room::Occluder& d = room.occluders[0];
       aimAtOccluder(w, d);
       if (d.y.kind == Kind::Uniform) {

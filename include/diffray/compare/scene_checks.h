@@ -33,6 +33,13 @@ struct AimRect {
 /// it directly, so its WBSDF level would lack the direct sound.
 void checkAimReachesListeners(const room::Room& room, const AimRect& aim);
 
+/// `--aim`: throws core::InputError naming the first reflecting surface (a material that does not absorb
+/// everything in every band) outside the occluders' own groups: aimed rays go straight at the occluder, so
+/// the paths that meet such a surface first (a rigid ground before a barrier) would be dropped. A door's
+/// sill floor is allowed (the door's model takes the floor in by the image principle), and so is the screen
+/// in the occluder's own plane (what it reflects stays on the source's side).
+void checkAimHasNoReflectors(const room::Room& room);
+
 /// The angle `deg` wrapped into (−180°, 180°].
 double wrapDegrees(double deg);
 
