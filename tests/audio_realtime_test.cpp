@@ -34,15 +34,21 @@ thread_local bool t_counting = false;
 std::atomic<long> g_news{0};
 std::atomic<long> g_deletes{0};
 
-void* countedAlloc(std::size_t n) {
+void* countedAllocOrNull(std::size_t n) noexcept {
   if (t_counting) g_news.fetch_add(1);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  return std::malloc(n == 0 ? 1 : n);
+}
+void* countedAlignedAllocOrNull(std::size_t n, std::align_val_t a) noexcept {
+  if (t_counting) g_news.fetch_add(1);
+  const auto align = static_cast<std::size_t>(a);
+  return std::aligned_alloc(align, (std::max<std::size_t>(n, 1) + align - 1) / align * align);
+}
+void* countedAlloc(std::size_t n) {
+  if (void* p = countedAllocOrNull(n)) return p;
   throw std::bad_alloc();
 }
 void* countedAlignedAlloc(std::size_t n, std::align_val_t a) {
-  if (t_counting) g_news.fetch_add(1);
-  const auto align = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(align, (std::max<std::size_t>(n, 1) + align - 1) / align * align)) return p;
+  if (void* p = countedAlignedAllocOrNull(n, a)) return p;
   throw std::bad_alloc();
 }
 void countedFree(void* p) {
@@ -55,6 +61,16 @@ void* operator new(std::size_t n) { return countedAlloc(n); }
 void* operator new[](std::size_t n) { return countedAlloc(n); }
 void* operator new(std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
+// The nothrow forms too: every allocation and deallocation of the test binary goes through the same malloc
+// and free, whichever form allocated it (AddressSanitizer reports a mismatch otherwise).
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return countedAllocOrNull(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return countedAllocOrNull(n); }
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return countedAlignedAllocOrNull(n, a);
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return countedAlignedAllocOrNull(n, a);
+}
 void operator delete(void* p) noexcept { countedFree(p); }
 void operator delete[](void* p) noexcept { countedFree(p); }
 void operator delete(void* p, std::size_t) noexcept { countedFree(p); }
@@ -63,6 +79,10 @@ void operator delete(void* p, std::align_val_t) noexcept { countedFree(p); }
 void operator delete[](void* p, std::align_val_t) noexcept { countedFree(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { countedFree(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { countedFree(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { countedFree(p); }
 
 namespace {
 
@@ -223,13 +243,15 @@ TEST(RealtimeRing, DeliversASequenceInOrderAcrossThreads) {
 }
 
 TEST(RealtimeAllocation, CallbackAllocatesNothingAcrossTailStageBoundaries) {
-  // The counter works: an allocation between the hooks is seen.
+  // The counter works: an allocation between the hooks is seen, in the plain and the nothrow forms.
   startCounting(nullptr);
   auto* probe = new int(1);
   delete probe;
+  auto* nothrow_probe = new (std::nothrow) int(2);
+  delete nothrow_probe;
   stopCounting(nullptr);
-  ASSERT_EQ(g_news.load(), 1);
-  ASSERT_EQ(g_deletes.load(), 1);
+  ASSERT_EQ(g_news.load(), 2);
+  ASSERT_EQ(g_deletes.load(), 2);
   g_news = 0;
   g_deletes = 0;
 
