@@ -82,6 +82,7 @@ expect_spectrogram_error "zero dB range"         "$tmp/ok.wav" -o "$tmp/spec.png
 expect_spectrogram_error "no -o"                 "$tmp/ok.wav"
 expect_spectrogram_error "mark without a time"  "$tmp/ok.wav" -o "$tmp/spec.png" --mark :START
 expect_spectrogram_error "non-numeric mark"      "$tmp/ok.wav" -o "$tmp/spec.png" --mark soon:END
+expect_spectrogram_error "hexadecimal mark"      "$tmp/ok.wav" -o "$tmp/spec.png" --mark 0x1p-2:END
 # A title with a newline and a gnuplot command after it: drawn as text, the command not run.
 if command -v gnuplot >/dev/null 2>&1; then
   "$bin" spectrogram "$tmp/ok.wav" -o "$tmp/t.png" --title 'a

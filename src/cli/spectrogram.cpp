@@ -47,13 +47,7 @@ TimeMarker parseMark(const std::string& text) {
   const size_t colon = text.find(':');
   const std::string time = text.substr(0, colon);
   TimeMarker m;
-  size_t used = 0;
-  try {
-    m.time_s = std::stod(time, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (time.empty() || used != time.size() || !std::isfinite(m.time_s))
+  if (!core::parseDecimal(time, m.time_s) || !std::isfinite(m.time_s))
     throw core::InputError("--mark", "expected TIME[:LABEL] with TIME in seconds, got \"" + text + "\"");
   m.label = colon == std::string::npos ? time + " s" : text.substr(colon + 1);
   return m;
