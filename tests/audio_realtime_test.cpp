@@ -7,7 +7,6 @@
 // between the backend's hooks). Locks: none by construction (code review: render() uses std::atomic and
 // the convolver, which uses no mutex outside init()); not checked at run time.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -27,6 +26,7 @@
 #include "diffray/audio/wav.h"
 #include "diffray/dsp/crossfade_convolver.h"
 #include "dsp_oracle.h"
+#include "temp_dir.h"
 
 // ---- Counting global allocation functions: count only while the calling thread has set the flag. ----
 namespace {
@@ -94,15 +94,7 @@ using diffray::test::uniformNoise;
 void startCounting(void*) { t_counting = true; }
 void stopCounting(void*) { t_counting = false; }
 
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    path = std::filesystem::temp_directory_path() / ("diffray_rt_" + std::to_string(::getpid()) + "_" +
-                                                      std::to_string(reinterpret_cast<std::uintptr_t>(this)));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-};
+using diffray::test::TempDir;
 
 /// Interleaves two equally long channels.
 std::vector<float> interleave(const std::vector<float>& a, const std::vector<float>& b) {
@@ -141,7 +133,7 @@ struct DryFixture {
 };
 
 TEST(RealtimePlayback, TestBackendOutputEqualsDirectConvolution) {
-  TempDir dir;
+  const TempDir dir("rt_convolution");
   std::mt19937 rng(424242);
   const DryFixture dry(dir.path, rng);
   // A stereo IR long enough for three stages at block 64: 64, 512, 4096.
@@ -255,7 +247,7 @@ TEST(RealtimeAllocation, CallbackAllocatesNothingAcrossTailStageBoundaries) {
   g_news = 0;
   g_deletes = 0;
 
-  TempDir dir;
+  const TempDir dir("rt_allocation");
   std::mt19937 rng(77);
   const DryFixture dry(dir.path, rng);
   const std::vector<std::vector<float>> ir{uniformNoise(rng, 20000), uniformNoise(rng, 20000)};
