@@ -7,7 +7,6 @@
 // between the backend's hooks). Locks: none by construction (code review: render() uses std::atomic and
 // the convolver, which uses no mutex outside init()); not checked at run time.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -27,6 +26,7 @@
 #include "diffray/audio/wav.h"
 #include "diffray/dsp/crossfade_convolver.h"
 #include "dsp_oracle.h"
+#include "temp_dir.h"
 
 // ---- Counting global allocation functions: count only while the calling thread has set the flag. ----
 namespace {
@@ -34,15 +34,21 @@ thread_local bool t_counting = false;
 std::atomic<long> g_news{0};
 std::atomic<long> g_deletes{0};
 
-void* countedAlloc(std::size_t n) {
+void* countedAllocOrNull(std::size_t n) noexcept {
   if (t_counting) g_news.fetch_add(1);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  return std::malloc(n == 0 ? 1 : n);
+}
+void* countedAlignedAllocOrNull(std::size_t n, std::align_val_t a) noexcept {
+  if (t_counting) g_news.fetch_add(1);
+  const auto align = static_cast<std::size_t>(a);
+  return std::aligned_alloc(align, (std::max<std::size_t>(n, 1) + align - 1) / align * align);
+}
+void* countedAlloc(std::size_t n) {
+  if (void* p = countedAllocOrNull(n)) return p;
   throw std::bad_alloc();
 }
 void* countedAlignedAlloc(std::size_t n, std::align_val_t a) {
-  if (t_counting) g_news.fetch_add(1);
-  const auto align = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(align, (std::max<std::size_t>(n, 1) + align - 1) / align * align)) return p;
+  if (void* p = countedAlignedAllocOrNull(n, a)) return p;
   throw std::bad_alloc();
 }
 void countedFree(void* p) {
@@ -55,6 +61,16 @@ void* operator new(std::size_t n) { return countedAlloc(n); }
 void* operator new[](std::size_t n) { return countedAlloc(n); }
 void* operator new(std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
+// The nothrow forms too: every allocation and deallocation of the test binary goes through the same malloc
+// and free, whichever form allocated it (AddressSanitizer reports a mismatch otherwise).
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return countedAllocOrNull(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return countedAllocOrNull(n); }
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return countedAlignedAllocOrNull(n, a);
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return countedAlignedAllocOrNull(n, a);
+}
 void operator delete(void* p) noexcept { countedFree(p); }
 void operator delete[](void* p) noexcept { countedFree(p); }
 void operator delete(void* p, std::size_t) noexcept { countedFree(p); }
@@ -63,6 +79,10 @@ void operator delete(void* p, std::align_val_t) noexcept { countedFree(p); }
 void operator delete[](void* p, std::align_val_t) noexcept { countedFree(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { countedFree(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { countedFree(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { countedFree(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { countedFree(p); }
 
 namespace {
 
@@ -74,15 +94,7 @@ using diffray::test::uniformNoise;
 void startCounting(void*) { t_counting = true; }
 void stopCounting(void*) { t_counting = false; }
 
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    path = std::filesystem::temp_directory_path() / ("diffray_rt_" + std::to_string(::getpid()) + "_" +
-                                                      std::to_string(reinterpret_cast<std::uintptr_t>(this)));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-};
+using diffray::test::TempDir;
 
 /// Interleaves two equally long channels.
 std::vector<float> interleave(const std::vector<float>& a, const std::vector<float>& b) {
@@ -121,7 +133,7 @@ struct DryFixture {
 };
 
 TEST(RealtimePlayback, TestBackendOutputEqualsDirectConvolution) {
-  TempDir dir;
+  const TempDir dir("rt_convolution");
   std::mt19937 rng(424242);
   const DryFixture dry(dir.path, rng);
   // A stereo IR long enough for three stages at block 64: 64, 512, 4096.
@@ -223,17 +235,19 @@ TEST(RealtimeRing, DeliversASequenceInOrderAcrossThreads) {
 }
 
 TEST(RealtimeAllocation, CallbackAllocatesNothingAcrossTailStageBoundaries) {
-  // The counter works: an allocation between the hooks is seen.
+  // The counter works: an allocation between the hooks is seen, in the plain and the nothrow forms.
   startCounting(nullptr);
   auto* probe = new int(1);
   delete probe;
+  auto* nothrow_probe = new (std::nothrow) int(2);
+  delete nothrow_probe;
   stopCounting(nullptr);
-  ASSERT_EQ(g_news.load(), 1);
-  ASSERT_EQ(g_deletes.load(), 1);
+  ASSERT_EQ(g_news.load(), 2);
+  ASSERT_EQ(g_deletes.load(), 2);
   g_news = 0;
   g_deletes = 0;
 
-  TempDir dir;
+  const TempDir dir("rt_allocation");
   std::mt19937 rng(77);
   const DryFixture dry(dir.path, rng);
   const std::vector<std::vector<float>> ir{uniformNoise(rng, 20000), uniformNoise(rng, 20000)};

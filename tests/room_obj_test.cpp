@@ -6,6 +6,7 @@
 
 #include "diffray/core/error.h"
 #include "diffray/room/obj.h"
+#include "temp_dir.h"
 
 namespace dr = diffray::room;
 namespace dc = diffray::core;
@@ -105,7 +106,11 @@ TEST(RoomObj, ErrorsNameFileAndLine) {
   EXPECT_EQ(errorOf("v 0 0 0\nf -2 1 1\n"), "t.obj:2: vertex index -2 out of range (1 vertices defined so far)");
   EXPECT_EQ(errorOf("v 0 0\n"), "t.obj:1: a vertex needs 3 coordinates");
   EXPECT_EQ(errorOf("\n\nv 0 x 0\n"), "t.obj:3: bad coordinate \"x\"");
-  EXPECT_EQ(errorOf("v 0 0 inf\n"), "t.obj:1: coordinate \"inf\" is not finite");
+  // Decimal numbers only, as every option reads them: no hex float, and nan or inf is a word, not a number.
+  EXPECT_EQ(errorOf("v 0 0 0x1p1\n"), "t.obj:1: bad coordinate \"0x1p1\"");
+  EXPECT_EQ(errorOf("v 0 0 inf\n"), "t.obj:1: bad coordinate \"inf\"");
+  EXPECT_EQ(errorOf("v nan 0 0\n"), "t.obj:1: bad coordinate \"nan\"");
+  EXPECT_EQ(errorOf("v 0 0 1e999\n"), "t.obj:1: coordinate \"1e999\" is not finite");
   // Finite but beyond what Embree's float scene holds (it would assert inside rtcIntersect1).
   EXPECT_EQ(errorOf("v 0 0 2e6\n"), "t.obj:1: coordinate \"2e6\" is beyond ±1e6 m (scenes are in float metres)");
   EXPECT_EQ(errorOf("v 0 0 0\nv 1 0 0\nf 1 2\n"), "t.obj:3: a face needs at least 3 vertices");
@@ -152,4 +157,7 @@ TEST(RoomObj, AStarPolygonIsRefusedNotFanned) {
   EXPECT_NEAR(room.surfaceArea(), 2.5 * std::sin(2 * M_PI / 5), 1e-5);  // to_string keeps 6 decimals
 }
 
-TEST(RoomObj, ADirectoryIsNotAnObjFile) { EXPECT_EQ(loadErrorOf("/tmp"), "/tmp: is a directory"); }
+TEST(RoomObj, ADirectoryIsNotAnObjFile) {
+  const diffray::test::TempDir dir("obj_directory");
+  EXPECT_EQ(loadErrorOf(dir.path.string()), dir.path.string() + ": is a directory");
+}

@@ -15,6 +15,7 @@
 #include "diffray/room/checks.h"
 #include "diffray/room/materials.h"
 #include "diffray/room/scene_file.h"
+#include "temp_dir.h"
 
 namespace dr = diffray::room;
 namespace dc = diffray::core;
@@ -450,7 +451,8 @@ TEST(RoomSceneFileErrors, AKeyGivenTwiceInOneObject) {
                         R"(, "sources": [{"position": [1, 1, 1]}, {"position": [2, 1, 1]}]})"),
             "(no error)");
   // The material library goes through the same parser.
-  const std::string lib = (std::filesystem::temp_directory_path() / "diffray_dup_library.json").string();
+  const diffray::test::TempDir dir("dup_library");
+  const std::string lib = dir.file("library.json");
   std::ofstream(lib) << R"({"materials": {"a": {"absorption": 0.1, "scattering": 0.1, "source": "x"},
                                           "a": {"absorption": 0.2, "scattering": 0.1, "source": "x"}}})";
   try {
@@ -459,7 +461,6 @@ TEST(RoomSceneFileErrors, AKeyGivenTwiceInOneObject) {
   } catch (const dc::InputError& err) {
     EXPECT_EQ(std::string(err.what()), lib + ": materials.a: duplicate key");
   }
-  std::filesystem::remove(lib);
 }
 
 TEST(RoomSceneFileErrors, NamedFilesMustBeRegularFiles) {

@@ -32,7 +32,8 @@ TEST(StatEdgeKernel, SamplesFollowTheirPdfAndMeanIsTheIntegralOfSinc) {
                                                          {-0.4, 37.2}, {-12.5, 3.3}, {-800.0, 0.6}};
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
-  for (const auto& [lo, hi] : ranges) {
+  for (const auto& range : ranges) {  // no structured binding: C++17 lambdas cannot capture one
+    const double lo = range.first, hi = range.second;
     const double a = -std::ceil(-lo), b = std::ceil(hi);  // the support: whole periods
     const int per = 4;
     const int nbins = static_cast<int>((b - a) * per);

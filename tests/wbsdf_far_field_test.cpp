@@ -44,7 +44,8 @@ TEST(StatFarField, SamplesFollowTheirPdfAndWeightsGiveSincSquaredPerBin) {
                                                          {-0.1, 17.5}, {-9.0, 0.05}, {0.6, 4.0}};
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
-  for (const auto& [lo, hi] : ranges) {
+  for (const auto& range : ranges) {  // no structured binding: C++17 lambdas cannot capture one
+    const double lo = range.first, hi = range.second;
     const int nbins = 48;
     const double width = (hi - lo) / nbins;
     std::vector<double> prob(nbins), observed(nbins, 0.0), wsum(nbins, 0.0), wsq(nbins, 0.0);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "diffray/wbsdf/table.h"
+#include "temp_dir.h"
 
 namespace diffray::testing {
 
@@ -135,10 +136,11 @@ inline dw::TableOptions optionsFor(double wavelength) {
   return o;
 }
 
-/// Writes `content` to a file in the test's temporary folder, diffray_<tag>_<name>.csv, and returns its path
-/// (profile CSVs for wbsdf::readProfileCsv; a distinct tag per test file keeps parallel tests apart).
+/// Writes `content` to <tag>_<name>.csv in this test process's own temporary folder (removed with all it
+/// holds when the process exits) and returns its path (profile CSVs for wbsdf::readProfileCsv).
 inline std::string writeTempCsv(const std::string& tag, const std::string& name, const std::string& content) {
-  const std::string path = ::testing::TempDir() + "/diffray_" + tag + "_" + name + ".csv";
+  static const diffray::test::TempDir dir("wbsdf_csv");
+  const std::string path = dir.file(tag + "_" + name + ".csv");
   std::ofstream(path) << content;
   return path;
 }

@@ -344,7 +344,8 @@ TEST(ProfileCsv, BadInputNamesFileAndLine) {
       EXPECT_NE(std::string(e.what()).find(path + c.line), std::string::npos) << c.name << ": " << e.what();
     }
   }
-  const std::string missing = ::testing::TempDir() + "/diffray_no_such_profile.csv";
+  const diffray::test::TempDir empty("no_profile");
+  const std::string missing = empty.file("no_such_profile.csv");
   EXPECT_THROW(dw::readProfileCsv(missing), diffray::core::InputError);
   EXPECT_THROW(dw::resampleProfile(dw::ProfilePoints{{0.0, 1.0}, {1.0, 1.0}, {0.0, 0.0}}, 0.0),
                diffray::core::InputError);

@@ -9,6 +9,8 @@ DIFFRAY_PACKAGES+=(libpng-dev)  # PNG output of rendered images
 DIFFRAY_PACKAGES+=(libopenexr-dev)  # OpenEXR (float) output of rendered images
 DIFFRAY_PACKAGES+=(sox)  # tests/wav_readers.sh: sox reads every WAV diffray writes
 DIFFRAY_PACKAGES+=(python3-dev python3-pybind11 python3-numpy python3-pytest)  # the Python module (src/python)
+# Only tools/sanitize adds these: clang with its sanitizer runtimes (AddressSanitizer, UBSan).
+DIFFRAY_SANITIZE_PACKAGES=(clang libclang-rt-dev)
 
 diffray_install_deps() {
   local missing=()

@@ -21,8 +21,11 @@ namespace diffray::audio {
 
 namespace {
 
-// More samples than this is a mistake (a 2^30-sample file is 8 GiB of doubles), not an impulse response.
-constexpr double kMaxSamples = 1u << 30;
+/// The refusal of a file holding more than `cap` frames or samples, with the cap stated.
+core::InputError tooLong(const std::string& path, long cap, const char* what) {
+  return core::InputError(path, std::string("the audio file is too long: diffray reads at most ") + std::to_string(cap) +
+                                    " " + what + " of it into memory");
+}
 // The highest sample rate read (768 kHz, the top of the PCM rates in use): a header claiming more is
 // refused before any buffer is sized by it (a 4 kB file saying 1 GHz once took 3 GB in metrics' FFTs).
 constexpr int kMaxReadRateHz = 768000;
@@ -82,18 +85,35 @@ AudioBuffer readAudio(const std::string& path, std::string* warning) {
   if (info.channels <= 0 || info.samplerate <= 0)
     throw core::InputError(path, "the audio file has no channels or no sample rate");
   checkSampleRate(path, info.samplerate);
-  if (static_cast<double>(info.frames) * info.channels > kMaxSamples)
-    throw core::InputError(path, "the audio file is too long (more than 2^30 samples)");
   AudioBuffer out;
   out.sample_rate_hz = info.samplerate;
   out.channels = info.channels;
   if (warning != nullptr) *warning = truncationWarning(file.get(), path);
-  out.samples.resize(static_cast<size_t>(info.frames) * static_cast<size_t>(info.channels));
-  const sf_count_t got = sf_readf_double(file.get(), out.samples.data(), info.frames);
+  // In blocks, the buffer growing with the frames actually decoded: the header's length is not trusted
+  // (a FLAC's STREAMINFO may claim 2^36 frames in a 242-byte file).
+  const auto channels = static_cast<size_t>(info.channels);
+  constexpr sf_count_t kBlock = 1 << 16;
+  size_t held = 0;  // samples read
+  for (;;) {
+    if (held + static_cast<size_t>(kBlock) * channels > static_cast<size_t>(kMaxReadSamples)) {
+      // Room for the last block only up to the cap, and one frame more to see whether the file goes on.
+      const auto room = static_cast<sf_count_t>((static_cast<size_t>(kMaxReadSamples) - held) / channels);
+      out.samples.resize(held + static_cast<size_t>(room + 1) * channels);
+      const sf_count_t got = sf_readf_double(file.get(), out.samples.data() + held, room + 1);
+      if (got > room) throw tooLong(path, kMaxReadSamples, "samples");
+      held += static_cast<size_t>(std::max<sf_count_t>(got, 0)) * channels;
+      break;
+    }
+    out.samples.resize(held + static_cast<size_t>(kBlock) * channels);
+    const sf_count_t got = sf_readf_double(file.get(), out.samples.data() + held, kBlock);
+    if (got > 0) held += static_cast<size_t>(got) * channels;
+    if (got < kBlock) break;
+  }
   if (sf_error(file.get()) != SF_ERR_NO_ERROR)
     throw core::InputError(path, std::string("cannot read audio: ") + sf_strerror(file.get()));
-  if (got <= 0) throw core::InputError(path, "the audio file holds no frames");
-  out.samples.resize(static_cast<size_t>(got) * static_cast<size_t>(info.channels));
+  if (held == 0) throw core::InputError(path, "the audio file holds no frames");
+  out.samples.resize(held);
+  out.samples.shrink_to_fit();
   for (size_t i = 0; i < out.samples.size(); ++i)
     if (!std::isfinite(out.samples[i]))
       throw core::InputError(path, "sample at " + sampleWhere(static_cast<long>(i), out.channels) + " is " +
@@ -179,6 +199,26 @@ long AudioReader::read(float* out, long frames) {
                                         (std::isnan(out[i]) ? "NaN" : "infinite"));
   position_ += static_cast<long>(got);
   return static_cast<long>(got);
+}
+
+std::vector<float> readChannel(AudioReader& reader, int channel, long max_frames) {
+  constexpr long kBlock = 8192;
+  const int cin = reader.channels();
+  DIFFRAY_CHECK(channel < cin);
+  std::vector<float> block(static_cast<size_t>(kBlock * cin)), x;
+  for (long frames; (frames = reader.read(block.data(), kBlock)) > 0;) {
+    if (static_cast<long>(x.size()) + frames > max_frames) throw tooLong(reader.path(), max_frames, "frames");
+    for (long f = 0; f < frames; ++f) {
+      if (channel >= 0) {
+        x.push_back(block[static_cast<size_t>(f * cin + channel)]);
+        continue;
+      }
+      double sum = 0.0;
+      for (int c = 0; c < cin; ++c) sum += block[static_cast<size_t>(f * cin + c)];
+      x.push_back(static_cast<float>(sum / cin));
+    }
+  }
+  return x;
 }
 
 WavWriter::WavWriter(const std::string& path, int sample_rate_hz, int channels)

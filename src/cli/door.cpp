@@ -97,7 +97,6 @@ std::vector<float> render(audio::AudioReader& reader, const std::vector<std::vec
   audio::WavWriter writer(out, static_cast<int>(std::lround(reader.sampleRateHz())), c_out);
   std::vector<float> raw(static_cast<std::size_t>(kBlock) * c_in), mono(kBlock), wet(static_cast<std::size_t>(kBlock) * c_out);
   std::vector<float> first;
-  first.reserve(static_cast<std::size_t>(reader.frames() + irs[0][0].size()));
   auto emit = [&](long n) {
     for (long i = 0; i < n * c_out; ++i) {
       wet[i] = static_cast<float>(wet[i] * gain);

@@ -3,6 +3,7 @@
 // half-written (outputs are written atomically).
 #include <cstdio>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "diffray/cli/commands.h"
@@ -73,6 +74,12 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const diffray::core::InputError& e) {
     std::cerr << "diffray: error: " << diffray::core::oneLine(e.what()) << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // The last resort: work whose memory grows with the input is estimated and refused before it starts,
+    // but the memory actually available (other programs, ulimit, containers) can still fall short.
+    std::cerr << "diffray: error: out of memory: this run needs more memory than the machine gives it (ask for "
+                 "less: fewer rays or pixels, a shorter length, a coarser grid, a shorter file)\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "diffray: internal error (please report): " << diffray::core::oneLine(e.what()) << "\n";

@@ -21,28 +21,6 @@ std::uint64_t wholeCount(const std::string& option, double v) {
   return static_cast<std::uint64_t>(v);
 }
 
-bool isDecimalNumber(const std::string& text) {
-  std::size_t i = 0;
-  const auto digits = [&] {
-    const std::size_t from = i;
-    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
-    return i - from;
-  };
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-  std::size_t mantissa = digits();
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    mantissa += digits();
-  }
-  if (mantissa == 0) return false;
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    if (digits() == 0) return false;
-  }
-  return i == text.size();
-}
-
 void requireDecimalFloats(CLI::App& app) {
   static const CLI::Validator decimal(
       [](const std::string& text) -> std::string {

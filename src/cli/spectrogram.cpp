@@ -42,37 +42,12 @@ void checkOutputPath(const SpectrogramOptions& o) {
   if (fs::equivalent(o.out, o.in, ec)) throw core::InputError(o.out, "would overwrite the input");
 }
 
-/// The analysed channel (0-based) of `reader`, or the mean of all channels for channel < 0.
-std::vector<float> readChannel(audio::AudioReader& reader, int channel) {
-  constexpr long kBlock = 8192;
-  const int cin = reader.channels();
-  std::vector<float> block(static_cast<size_t>(kBlock * cin)), x;
-  x.reserve(static_cast<size_t>(std::max(0L, reader.frames())));
-  for (long frames; (frames = reader.read(block.data(), kBlock)) > 0;)
-    for (long f = 0; f < frames; ++f) {
-      if (channel >= 0) {
-        x.push_back(block[static_cast<size_t>(f * cin + channel)]);
-        continue;
-      }
-      double sum = 0.0;
-      for (int c = 0; c < cin; ++c) sum += block[static_cast<size_t>(f * cin + c)];
-      x.push_back(static_cast<float>(sum / cin));
-    }
-  return x;
-}
-
 /// "1.5:START" → {1.5, "START"}; "2" → {2, "2 s"}. Throws core::InputError naming --mark.
 TimeMarker parseMark(const std::string& text) {
   const size_t colon = text.find(':');
   const std::string time = text.substr(0, colon);
   TimeMarker m;
-  size_t used = 0;
-  try {
-    m.time_s = std::stod(time, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (time.empty() || used != time.size() || !std::isfinite(m.time_s))
+  if (!core::parseDecimal(time, m.time_s) || !std::isfinite(m.time_s))
     throw core::InputError("--mark", "expected TIME[:LABEL] with TIME in seconds, got \"" + text + "\"");
   m.label = colon == std::string::npos ? time + " s" : text.substr(colon + 1);
   return m;
@@ -120,7 +95,7 @@ Runner addSpectrogramCommand(CLI::App& app, CommonOptions& /*common*/) {
       throw core::InputError("--channel", "must lie between 1 and " + std::to_string(reader.channels()) + " (" +
                                               o->in + " has " + std::to_string(reader.channels()) + "), got " +
                                               std::to_string(o->channel));
-    const std::vector<float> x = readChannel(reader, o->channel - 1);
+    const std::vector<float> x = audio::readChannel(reader, o->channel - 1);
     const auto n = static_cast<long>(x.size());
     const int hop = o->hop > 0 ? o->hop : std::max(1, o->window / 4);
     const dsp::Spectrogram s = dsp::spectrogramPeaks(x.data(), n, reader.sampleRateHz(), o->window, hop, kMaxFrames);

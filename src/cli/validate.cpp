@@ -177,9 +177,10 @@ Runner addValidateCommand(CLI::App& app, CommonOptions& common) {
     std::vector<validate::Params> params;
     for (const auto* c : chosen) {
       validate::Params given;
-      for (const auto& [k, v] : opts->values) {
+      for (const auto& kv : opts->values) {  // not a structured binding: C++17 lambdas cannot capture one
+        const std::string& k = kv.first;
         const bool takes = std::any_of(c->params.begin(), c->params.end(), [&](const auto& p) { return p.name == k; });
-        if (takes || chosen.size() == 1) given[k] = v;
+        if (takes || chosen.size() == 1) given[k] = kv.second;
       }
       params.push_back(validate::resolveParams(*c, given));
     }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "diffray/core/error.h"
+#include "diffray/core/number.h"
 #include "diffray/room/json_fields.h"
 
 namespace diffray::room {
@@ -61,14 +62,8 @@ ObjModel parseObj(std::istream& in, const std::string& file) {
       double xyz[3];
       for (double& c : xyz) {
         std::string t;
-        std::size_t used = 0;
         if (!(s >> t)) fail(file, line, "a vertex needs 3 coordinates");
-        try {
-          c = std::stod(t, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != t.size()) fail(file, line, "bad coordinate \"" + t + "\"");
+        if (!core::parseDecimal(t, c)) fail(file, line, "bad coordinate \"" + t + "\"");
         if (!std::isfinite(c)) fail(file, line, "coordinate \"" + t + "\" is not finite");
         if (std::abs(c) > kMaxCoordinateM)
           fail(file, line, "coordinate \"" + t + "\" is beyond ±1e6 m (scenes are in float metres)");

@@ -1,14 +1,15 @@
 #include "diffray/wbsdf/profile_csv.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "diffray/core/error.h"
+#include "diffray/core/number.h"
 
 namespace diffray::wbsdf {
 
@@ -33,15 +34,14 @@ std::vector<std::string> splitFields(const std::string& line) {
   return fields;
 }
 
-/// Parses the whole of `text` as a double (strtod, so "nan" and "inf" parse and are caught by the caller).
-bool parseNumber(const std::string& text, double& value) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) return false;
-  // Overflow yields ±HUGE_VAL (reported as non-finite); underflow to 0 or a denormal is harmless.
-  if (errno == ERANGE && std::abs(value) < 1.0) errno = 0;
+/// Whether a first line is a header (column names): none of its fields reads as a number in any syntax
+/// strtod knows, so that "0x1p-3,1,0" is a data line (refused: numbers are decimal) rather than skipped.
+bool isHeader(const std::vector<std::string>& fields) {
+  for (const std::string& f : fields) {
+    char* end = nullptr;
+    std::strtod(f.c_str(), &end);
+    if (!f.empty() && end == f.c_str() + f.size()) return false;
+  }
   return true;
 }
 
@@ -62,10 +62,9 @@ ProfilePoints readProfileCsv(const std::string& path) {
     const std::string where = path + ":" + std::to_string(line_no);
     const std::vector<std::string> fields = splitFields(line);
 
-    double first = 0.0;
     if (!seen_first_content_line) {
       seen_first_content_line = true;
-      if (!fields.empty() && !parseNumber(fields[0], first)) continue;  // a header line
+      if (isHeader(fields)) continue;
     }
     if (fields.size() != 3) {
       throw core::InputError(where, "expected 3 columns (x, amplitude, phase), found " +
@@ -73,11 +72,11 @@ ProfilePoints readProfileCsv(const std::string& path) {
     }
     double values[3] = {0.0, 0.0, 0.0};
     for (int c = 0; c < 3; ++c) {
-      if (!parseNumber(fields[static_cast<size_t>(c)], values[c])) {
+      if (!core::parseDecimal(fields[static_cast<size_t>(c)], values[c])) {
         throw core::InputError(where, std::string("column '") + kColumnNames[c] + "' is not a number: '" +
                                           fields[static_cast<size_t>(c)] + "'");
       }
-      if (!std::isfinite(values[c]) || errno == ERANGE) {
+      if (!std::isfinite(values[c])) {
         throw core::InputError(where, std::string("column '") + kColumnNames[c] +
                                           "' is not finite: '" + fields[static_cast<size_t>(c)] + "'");
       }
@@ -163,9 +162,10 @@ std::shared_ptr<const WbsdfTable> profileTable(const ProfilePoints& points, doub
   const double samples = (points.x_m.back() - points.x_m.front()) / dx + 1.0;
   const double budget = static_cast<double>(max_cells);
   const auto too_long = [&]() {
-    return core::InputError("profile", "is too long for a Wigner table at this wavelength (" +
-                                           std::to_string(static_cast<long long>(samples)) + " samples at dx = " +
-                                           std::to_string(dx) + " m); use a shorter profile or coarser points");
+    std::ostringstream what;  // samples may exceed every integer type: stated as the double it is
+    what << "is too long for a Wigner table at this wavelength (" << std::setprecision(4) << samples
+         << " samples at dx = " << dx << " m); use a shorter profile or coarser points";
+    return core::InputError("profile", what.str());
   };
   if (!(samples * 64.0 <= 4.0 * budget)) throw too_long();
   // Untruncated lags need nu ≥ 2·samples (and at least 64 columns for any profile, however short).

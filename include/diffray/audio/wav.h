@@ -58,7 +58,8 @@ class AudioReader {
 
   double sampleRateHz() const { return sample_rate_hz_; }
   int channels() const { return channels_; }
-  long frames() const { return frames_; }  ///< as the header says
+  long frames() const { return frames_; }  ///< as the header says: a claim, not a size to allocate
+  const std::string& path() const { return path_; }
   /// Reads up to `frames` interleaved frames into `out` (room for frames·channels() floats); returns the
   /// number read, 0 at the end. Throws core::InputError naming the file for a read error or a NaN/Inf
   /// sample (the frame and channel named).
@@ -76,6 +77,16 @@ class AudioReader {
   long position_ = 0;  ///< frames read so far
   std::string warning_;
 };
+
+/// The most samples (frames × channels) a reader keeps in memory: 2^30, 8 GiB as double. Reading stops
+/// with core::InputError past it, whatever the header claims (a header's length is never trusted: buffers
+/// grow with the data actually decoded).
+inline constexpr long kMaxReadSamples = 1L << 30;
+
+/// The rest of `reader`'s file as one channel: channel `channel` (0-based), or the mean of all channels for
+/// channel < 0. Memory grows with the frames actually read; more than `max_frames` frames is refused with
+/// core::InputError naming the file and the cap.
+std::vector<float> readChannel(AudioReader& reader, int channel, long max_frames = kMaxReadSamples);
 
 /// Writes a 32-bit float WAV block by block into a temporary file beside `path`, renamed to `path` by
 /// commit(). Without commit() (an exception on the way) the temporary is removed in the destructor.

@@ -11,6 +11,7 @@
 
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
+#include "diffray/core/number.h"
 #include "diffray/room/room.h"
 
 namespace diffray::reference {
@@ -52,9 +53,9 @@ const CLI::Validator& seedValidator();
 /// the option, where CLI11 alone would say "Could not convert" (or, under CLI::Range, "not in range") and would
 /// read "010" as octal.
 CLI::Validator wholeNumberValidator(int lo = std::numeric_limits<int>::min(), int hi = std::numeric_limits<int>::max());
-/// Whether `text` is a decimal number: an optional sign, digits with an optional point (or a point and
-/// digits), an optional exponent. Not hex (strtod and CLI11 read 0x10 as 16), not "nan" or "inf".
-bool isDecimalNumber(const std::string& text);
+/// Whether `text` is a decimal number (core/number.h: not hex, which strtod and CLI11 read as 16 for 0x10,
+/// not "nan" or "inf"): the syntax of every number diffray reads.
+using core::isDecimalNumber;
 /// Adds a decimal-number check to every floating-point option of every subcommand of `app` (CLI11 would
 /// read --gain 0x10 as 16 dB, as C's strtod does). Call once all subcommands are added.
 void requireDecimalFloats(CLI::App& app);
