@@ -275,6 +275,19 @@ TEST(RoomOccluderFile, EdgeZoneLiesPastTheEdgeOnTheOpenSide) {
   expectVec(e2.origin_m, dr::Vec3(1, 4, 1.5), "zone centre, extent 2");
 }
 
+TEST(RoomOccluderFile, ABarrierAloneNeedsNoGeometry) {
+  // Free field: the barrier brings its panel, so "geometry" may be left out; without occluders it may not.
+  auto scene = baseScene();
+  scene.erase("geometry");
+  scene["occluders"] = {{{"type", "barrier"}, {"name", "b"}, {"base", {{2, 5, 0}, {6, 5, 0}}}, {"height_m", 2},
+                         {"material", "m"}, {"extent_m", 1}}};
+  const dr::Room room = parse(scene);
+  EXPECT_NEAR(groupInfo(room, "barrier:b").area_m2, 8.0, 1e-12);
+  ASSERT_EQ(room.occluders.size(), 1u);
+  scene.erase("occluders");
+  EXPECT_THROW(parse(scene), diffray::core::InputError);
+}
+
 TEST(RoomOccluderFile, BarrierAddsItsPanelAndAnEdgeZoneAboveIt) {
   auto scene = baseScene();
   scene["occluders"] = {{{"type", "barrier"}, {"name", "b"}, {"base", {{2, 5, 0}, {6, 5, 0}}}, {"height_m", 2},

@@ -326,6 +326,18 @@ TEST(RoomSceneFile, EveryAirTheFileAcceptsTheAirModelAccepts) {
   }
 }
 
+TEST(RoomSceneFile, TheSpeedOfSoundCanBeGivenDirectly) {
+  auto scene = baseScene();
+  scene["air"] = {{"temperature_c", 10}, {"speed_of_sound_m_s", 343}};
+  const dr::Room room = dr::parseRoom(scene.dump(), "rooms/x.json", kData);
+  EXPECT_EQ(dr::speedOfSound(room.air), 343.0);
+  // The temperature alone: 331.3·√(1 + T/273.15) (the textbook formula, written here).
+  scene["air"] = {{"temperature_c", 10}};
+  EXPECT_NEAR(dr::speedOfSound(dr::parseRoom(scene.dump(), "rooms/x.json", kData).air), 331.3 * std::sqrt(1.0 + 10.0 / 273.15), 1e-12);
+  scene["air"] = {{"speed_of_sound_m_s", 1500}};
+  expectMessage(errorOf(scene), {"rooms/x.json: air.speed_of_sound_m_s:", "450"});
+}
+
 TEST(RoomSceneFileErrors, UndefinedMaterial) {
   auto scene = baseScene();
   scene["geometry"][0]["box"]["materials"] = {{"all", "m"}, {"floor", "nope"}};

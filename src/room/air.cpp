@@ -31,6 +31,7 @@ void checkAir(const Air& air) {
   requireWithin("air.humidity", air.humidity_percent, 0.0, 100.0, "%");
   // ISO 9613-1 states its accuracy for pressures below 200 kPa; the scene file accepts the same range.
   requireWithin("air.pressure", air.pressure_kpa, 50.0, 200.0, "kPa");
+  if (air.speed_of_sound_m_s != 0.0) requireWithin("air.speed_of_sound", air.speed_of_sound_m_s, 250.0, 450.0, "m/s");
 }
 
 double waterVapourPercent(const Air& air) {
@@ -67,7 +68,7 @@ core::BandArray airAttenuationPerM(const Air& air, const core::Bands& bands) {
 
 double speedOfSound(const Air& air) {
   checkAir(air);
-  return core::speedOfSound(air.temperature_c);
+  return air.speed_of_sound_m_s > 0.0 ? air.speed_of_sound_m_s : core::speedOfSound(air.temperature_c);
 }
 
 }  // namespace diffray::room

@@ -247,11 +247,13 @@ struct SceneParser {
   }
 
   void air(const JsonField& a) {
-    a.allowKeys({"temperature_c", "humidity_percent", "pressure_kpa"});
+    a.allowKeys({"temperature_c", "humidity_percent", "pressure_kpa", "speed_of_sound_m_s"});
     // The validity range of ISO 9613-1's air absorption (−20…50 °C, up to 200 kPa).
     if (a.has("temperature_c")) room.air.temperature_c = a["temperature_c"].numberIn(-20.0, 50.0);
     if (a.has("humidity_percent")) room.air.humidity_percent = a["humidity_percent"].numberIn(0.0, 100.0);
     if (a.has("pressure_kpa")) room.air.pressure_kpa = a["pressure_kpa"].numberIn(50.0, 200.0);
+    // Air from −50 to +125 °C; the temperature still sets the air absorption.
+    if (a.has("speed_of_sound_m_s")) room.air.speed_of_sound_m_s = a["speed_of_sound_m_s"].numberIn(250.0, 450.0);
     if (room.air.humidity_percent < 10.0)
       warnings.push_back(a.where() + ": humidity below 10 % is outside ISO 9613-1's stated range");
   }
@@ -345,7 +347,11 @@ Room parseRoom(const std::string& text, const std::string& file, const std::stri
     room.input_files.push_back(p.library_file);
   }
   if (top.has("materials")) p.materials(top["materials"]);
-  p.geometry(top["geometry"]);
+  // Occluders can bring their own surfaces (a barrier's panel): geometry is then optional (free field).
+  if (top.has("geometry")) p.geometry(top["geometry"]);
+  else if (!top.has("occluders"))
+    throw core::InputError(file, "geometry: missing (required, unless occluders such as a barrier bring their own "
+                                 "surfaces)");
   p.sources(top["sources"]);
   p.listeners(top["listeners"]);
   if (top.has("occluders"))

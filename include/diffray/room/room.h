@@ -54,6 +54,9 @@ struct Air {
   double temperature_c = 20.0;
   double humidity_percent = 50.0;
   double pressure_kpa = 101.325;
+  /// 0: the speed of sound follows the temperature (core::speedOfSound); otherwise this value (m/s), e.g. to
+  /// match a reference computed with c = 340 or 343 m/s. Air absorption always follows the temperature.
+  double speed_of_sound_m_s = 0.0;
 };
 
 struct Output {
