@@ -258,6 +258,9 @@ expect_compare_error "CSV into a missing folder"  "folder does not exist" "$room
 expect_compare_error "plot into a missing folder" "folder does not exist" "$rooms/barrier.json" --rays 1000 --plot "$tmp/no/such/dir/cmp.png"
 expect_compare_error "zero rays"            "--rays" "$rooms/barrier.json" --rays 0 "${fast[@]}"
 expect_compare_error "--fine-per-octave 0"  "--fine-per-octave" "$rooms/barrier.json" --rays 1000 --fine-per-octave 0 --csv "$tmp/cmp.csv"
+expect_compare_error "--freq 0"             "--freq: each frequency must lie in (0, 100000] Hz, got 0" "$rooms/barrier.json" --rays 1000 --freq 0 --csv "$tmp/cmp.csv"
+expect_compare_error "--freq 2e5"           "--freq: each frequency must lie in (0, 100000] Hz" "$rooms/barrier.json" --rays 1000 --freq 250,2e5 --csv "$tmp/cmp.csv"
+expect_compare_error "room mode: --freq"    "--freq: applies to free-field scenes only" "$rooms/two-rooms.json" --freq 250 "${fast[@]}"
 # Listeners compare cannot give a level for, each refused with one line naming it; --plot takes only .png.
 python3 - "$rooms/barrier.json" "$tmp" <<'PY'
 import json, sys
@@ -334,7 +337,10 @@ assert len({r["listener"] for r in rows}) == 7, "barrier.json has 7 listeners"
 assert all(isinstance(r["freq_hz"], (int, float)) and r["freq_hz"] > 0 for r in rows)
 table = list(csv.reader(open(sys.argv[2])))
 assert table[0][:5] == ["listener", "model", "freq_hz", "band", "level_db_re_free_field"], table[0]
+assert table[0][-1] == "phase_deg_re_free_field", table[0]
 assert len(table) == len(rows) + 1, (len(table), len(rows))
+fine = [r for r in rows if not r["band"] and r["model"] != "wbsdf"]
+assert fine and all(-180 <= r["phase_deg_re_free_field"] <= 180 for r in fine), "fine rows carry a phase"
 PY
 then passes=$((passes + 1)); else
   echo "FAIL: compare: good run (exit=$code) did not print the JSON lines and CSV"; sed 's/^/    /' "$tmp/stderr"; fails=$((fails + 1)); fi

@@ -26,6 +26,7 @@
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
+#include "diffray/room/json_fields.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/room/scene_file.h"
@@ -42,6 +43,7 @@ struct CompareCliOptions {
   std::string csv, plot;
   std::uint64_t rays = 0;  // 0: 1e6 in free-field mode, the room file's output.rays in room mode
   int fine = 24;
+  std::vector<double> freqs;  // free-field mode: --freq, replaces the fine grid
   bool aim = false;
   std::vector<double> wave_bands;  // room mode, model wave: the bands to simulate (empty: up to 500 Hz)
   double wave_ppw = 10.0;
@@ -161,12 +163,13 @@ std::string cell(double v) {
 
 void writeCompareCsv(const std::string& path, const room::Room& room, const compare::SceneComparison& c) {
   core::writeFileAtomically(path, [&](std::ostream& out) {
-    out << "listener,model,freq_hz,band,level_db_re_free_field,std_error_db,angle_past_shadow_boundary_deg\n";
+    out << "listener,model,freq_hz,band,level_db_re_free_field,std_error_db,angle_past_shadow_boundary_deg,"
+           "phase_deg_re_free_field\n";
     for (const auto& r : c.rows) {
       out << room.listeners[r.listener].name << ',' << r.model << ',' << r.freq_hz << ',' << (r.band ? r.band_label : "")
           << ',' << cell(r.level_db) << ',' << cell(r.std_error_db) << ',';
       if (c.shadow_angle_deg[r.listener]) out << *c.shadow_angle_deg[r.listener];
-      out << '\n';
+      out << ',' << cell(r.phase_deg) << '\n';
     }
   });
 }
@@ -175,6 +178,7 @@ void writeCompareCsv(const std::string& path, const room::Room& room, const comp
 int runRoomMode(const CompareCliOptions& o, CommonOptions& common, bool seed_given, const room::Room& room,
                 const std::vector<std::string>& warnings) {
   if (o.aim) throw core::InputError("--aim", "applies to free-field scenes only, not in room mode");
+  if (!o.freqs.empty()) throw core::InputError("--freq", "applies to free-field scenes only, not in room mode (its models give bands)");
   std::vector<std::string> models =
       splitModels(o.models, o.models_given, {"none", "utd", "wbsdf", "exact", "wave"}, "room");
   if (!o.models_given) models.pop_back();  // the wave reference (minutes) only when asked for
@@ -267,6 +271,9 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
                   "PNG (gnuplot); free-field: level against frequency and against angle past the shadow boundary; "
                   "room: G and early energy per band, per model, one panel per listener")
       ->check(outputPathValidator());
+  sub->add_option("--freq", o->freqs, "free-field mode: the frequencies (Hz, comma-separated) for UTD and exact "
+                                      "instead of the fine grid, each with level and phase re the free field")
+      ->delimiter(',');
   sub->add_option("--fine-per-octave", o->fine, "free-field mode: fine-grid frequencies per octave for UTD and exact")
       ->transform(wholeNumberValidator(1, 400))
       ->capture_default_str();
@@ -306,6 +313,12 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
     co.rays = o->rays ? o->rays : 1'000'000;
     co.seed = common.seed;
     co.fine_per_octave = o->fine;
+    for (double f : o->freqs) {
+      core::requireFinite("--freq", f);
+      if (!(f > 0.0 && f <= 100000.0))
+        throw core::InputError("--freq", "each frequency must lie in (0, 100000] Hz, got " + room::formatNumber(f));
+    }
+    co.freqs_hz = o->freqs;
     co.aim = o->aim;
     core::Progress progress("compare " + room.name, co.rays);
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
@@ -330,6 +343,8 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
         if (r.band) j["band_hz"] = r.band_label;
         if (r.model == "wbsdf") j["std_error_db"] = std::isfinite(r.std_error_db) ? nlohmann::ordered_json(r.std_error_db) : nlohmann::ordered_json();
         if (c.shadow_angle_deg[r.listener]) j["angle_past_shadow_boundary_deg"] = *c.shadow_angle_deg[r.listener];
+        if (!r.band && r.model != "wbsdf")
+          j["phase_deg_re_free_field"] = std::isfinite(r.phase_deg) ? nlohmann::ordered_json(r.phase_deg) : nlohmann::ordered_json();
         std::cout << jsonText(j) << '\n';
       }
       std::cout.flush();

@@ -18,6 +18,11 @@ using Kind = room::OccluderAxis::Kind;
 namespace {
 
 // The half-plane reference in the frame of an edge occluder: edge through E0 along ey, screen toward −ex.
+// 1/p_free = R·e^{ikR} at frequency f, distance r (time factor e^{iωt}).
+std::complex<double> unfree(double f_hz, double r_m, double c_m_s) {
+  return std::polar(r_m, 2.0 * 3.14159265358979323846 * f_hz * r_m / c_m_s);
+}
+
 class HalfPlaneModel : public PointModel {
  public:
   HalfPlaneModel(const room::Occluder& o, double c, bool rigid)
@@ -28,6 +33,13 @@ class HalfPlaneModel : public PointModel {
     const double r = (l - s).norm();
     std::vector<double> out;
     for (double fj : f) out.push_back(std::norm(reference::halfPlanePointSource(c_ / fj, ps, pl, rigid_) * r));
+    return out;
+  }
+  std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
+    const reference::CylindricalPoint ps = toFrame(s), pl = toFrame(l);
+    const double r = (l - s).norm();
+    std::vector<std::complex<double>> out;
+    for (double fj : f) out.push_back(reference::halfPlanePointSource(c_ / fj, ps, pl, rigid_) * unfree(fj, r, c_));
     return out;
   }
 
@@ -75,6 +87,18 @@ class ApertureModel : public PointModel {
     }
     return out;
   }
+  std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
+    if (floor_) return std::vector<std::complex<double>>(f.size(), {std::nan(""), std::nan("")});  // energies added
+    const double side = (s - o_.origin_m).dot(o_.normal) < 0.0 ? 1.0 : -1.0;
+    const auto frame = [&](const Vec3& p) {
+      const Vec3 d = p - o_.origin_m;
+      return reference::CartesianPoint{d.dot(o_.ex), d.dot(o_.ey), side * d.dot(o_.normal)};
+    };
+    const double r = (l - s).norm();
+    std::vector<std::complex<double>> out;
+    for (double fj : f) out.push_back(reference::aperturePointSource(c_ / fj, screen_, frame(s), frame(l)) * unfree(fj, r, c_));
+    return out;
+  }
 
  private:
   room::Occluder o_;
@@ -97,6 +121,13 @@ class UtdPointModel : public PointModel {
     const std::vector<utd::Path> paths = model_->paths(s, l);  // geometry only: once for every frequency
     std::vector<double> out;
     for (double fj : f) out.push_back(std::norm(model_->total(paths, fj, c_) * r));
+    return out;
+  }
+  std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
+    const double r = (l - s).norm();
+    const std::vector<utd::Path> paths = model_->paths(s, l);
+    std::vector<std::complex<double>> out;
+    for (double fj : f) out.push_back(model_->total(paths, fj, c_) * unfree(fj, r, c_));
     return out;
   }
 

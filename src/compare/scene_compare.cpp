@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 
 #include <tbb/parallel_for.h>
 
@@ -37,8 +38,15 @@ void listenerRows(const room::Room& room, const PointModel& m, const CompareOpti
     out.push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
     if (tick) tick(steps);
   }
-  const std::vector<double> e = m.relativeEnergy(src, li.position_m, fine);
-  for (std::size_t j = 0; j < fine.size(); ++j) out.push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0});
+  const std::vector<std::complex<double>> p = m.relativePressure(src, li.position_m, fine);
+  const bool coherent = std::all_of(p.begin(), p.end(), [](const std::complex<double>& v) { return std::isfinite(v.real()); });
+  std::vector<double> e;
+  if (coherent)
+    for (const auto& v : p) e.push_back(std::norm(v));
+  else
+    e = m.relativeEnergy(src, li.position_m, fine);  // arrivals added as energies: no phase
+  for (std::size_t j = 0; j < fine.size(); ++j)
+    out.push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0, std::arg(p[j]) * 180.0 / 3.14159265358979323846});
   if (tick) tick(steps);
 }
 
@@ -47,8 +55,9 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
   const int nl = static_cast<int>(room.listeners.size()), nb = room.bands.size();
   const double f_lo = room.bands.lowerHz(0), f_hi = room.bands.upperHz(nb - 1);
   const int n_fine = std::max(2, static_cast<int>(std::ceil(o.fine_per_octave * std::log2(f_hi / f_lo))) + 1);
-  std::vector<double> fine;
-  for (int j = 0; j < n_fine; ++j) fine.push_back(f_lo * std::pow(f_hi / f_lo, static_cast<double>(j) / (n_fine - 1)));
+  std::vector<double> fine = o.freqs_hz;
+  if (fine.empty())
+    for (int j = 0; j < n_fine; ++j) fine.push_back(f_lo * std::pow(f_hi / f_lo, static_cast<double>(j) / (n_fine - 1)));
   std::vector<std::vector<LevelRow>> per(nl);
   const auto tick = o.model_progress ? o.model_progress(m.name()) : std::function<void(std::uint64_t)>();
   const auto steps = static_cast<std::uint64_t>(nl) * static_cast<std::uint64_t>(nb + 1);

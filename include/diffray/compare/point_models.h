@@ -6,6 +6,7 @@
 // same distance, |p·R|² (so 0 dB is free field), at one frequency, or averaged over a band on a uniform
 // frequency grid and over the listener's sphere (a 6-point degree-3 ball rule: the WBSDF model scores the
 // fluence through the sphere, so the point models are read the same way). Thread-safe after construction.
+#include <complex>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,11 @@ class PointModel {
   /// |p(f)·R|² at `listener` for the source at `source`, for each frequency in `freqs_hz`.
   virtual std::vector<double> relativeEnergy(const core::Vec3& source, const core::Vec3& listener,
                                              const std::vector<double>& freqs_hz) const = 0;
+  /// p(f)/p_free(f) = p·R·e^{ikR} (time factor e^{iωt}, p_free = e^{−ikR}/R): magnitude and phase re the
+  /// free field at the same distance, for each frequency. NaN where the model has no phase (a reference
+  /// that adds two arrivals as energies).
+  virtual std::vector<std::complex<double>> relativePressure(const core::Vec3& source, const core::Vec3& listener,
+                                                             const std::vector<double>& freqs_hz) const = 0;
 };
 
 /// The exact reference for `room` if its occluders fit one (else null, with the reason in `why_not`). The

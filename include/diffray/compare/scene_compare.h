@@ -8,6 +8,7 @@
 // of its arguments; the WBSDF run uses every core.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ struct CompareOptions {
   std::uint64_t seed = 1;
   int band_points = 32;        ///< frequencies per band for the band levels of UTD and exact
   int fine_per_octave = 24;    ///< fine-grid frequencies per octave (UTD, exact), log-spaced
+  /// When not empty: the fine-grid frequencies (Hz) instead of the log-spaced grid.
+  std::vector<double> freqs_hz;
   /// Aim every WBSDF ray at the scene's single occluder (its rectangle; a door on a floor with its mirror
   /// image): far fewer rays for the same noise, valid only when every path to the listeners crosses it.
   bool aim = false;
@@ -40,6 +43,9 @@ struct LevelRow {
   std::string band_label;  ///< "250" … for band rows
   double level_db = 0.0;
   double std_error_db = 0.0;  ///< WBSDF: the noise of the level (0 for the deterministic models)
+  /// Fine-grid rows of UTD and the exact reference: the phase of p/p_free (degrees, (−180, 180], time factor
+  /// e^{iωt}); NaN for band rows, the WBSDF and a reference that adds arrivals as energies.
+  double phase_deg = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SceneComparison {
