@@ -258,4 +258,52 @@ TEST(ReferenceBtmPlate, SecondOrderTakesBackTheJumpBeyondThePlate) {
   }
 }
 
+TEST(ReferenceBtmPlate, OnAGroundTendsToTwoHalfPlanesNearTheTopOfALargePlate) {
+  // A plate x = 0, y in [−L, L], z in [0, H = L/2] standing on the rigid ground z = 0: the ground is the
+  // source's image S' and the plate's mirror (image principle). Near the middle of its top edge the field
+  // tends to the half-plane's for S plus the half-plane's for S' (Macdonald, the edge at z = H): both
+  // waves cross the same top edge. What differs falls as 1/L: S' sits 0.8 m from the union's bottom edge
+  // (z = −H), whose wave reaches the receiver over about 2H (measured: 4.1e-3, 1.0e-3, 2.6e-4 of the free
+  // field at L = 100, 400, 1600 m; the free plate's far edges alone fall as L^{−3/2}).
+  const double f = 500.0, k = 2.0 * kPi * f / kC, lambda = kC / f;
+  std::vector<double> worst;
+  for (double L : {400.0, 1600.0}) {
+    const double H = 0.5 * L;
+    ref::BtmPlate plate;
+    plate.vertices = {Vec3(0, -L, 0), Vec3(0, L, 0), Vec3(0, L, H), Vec3(0, -L, H)};
+    const Vec3 s(-1.5, 0.3, H - 0.8), s_image(s.x(), s.y(), -s.z());
+    // The half-plane frame of the top edge: edge along +y at z = H, the screen below it (x = 0, z < H).
+    const auto frame = [&](const Vec3& p) { return ref::halfPlaneFrameFromCartesian(H - p.z(), p.x(), p.y()); };
+    double w = 0.0;
+    for (const Vec3& r : {Vec3(2.0, 0.0, H - 1.0), Vec3(1.0, -0.5, H + 1.5), Vec3(-2.0, 0.4, H + 0.7)}) {
+      const Complex u = ref::btmPlateOnGroundField(k, plate, 0.0, s, r, 1).total();
+      const Complex half_planes = ref::halfPlanePointSource(lambda, frame(s), frame(r), true) +
+                                  ref::halfPlanePointSource(lambda, frame(s_image), frame(r), true);
+      w = std::max(w, std::abs(u - half_planes) / freeField(frame(s), frame(r)));
+    }
+    worst.push_back(w);
+    std::printf("plate on ground, L = %g m, vs two half-planes: worst %.2e of the free field\n", L, w);
+  }
+  EXPECT_LT(worst[1], 5e-4);
+  EXPECT_GT(worst[0] / worst[1], 3.0);  // 1/L: a factor 4 (a wrong image or union would not shrink)
+  // Refused: a plate off the ground, or a source below it.
+  ref::BtmPlate lifted;
+  lifted.vertices = {Vec3(0, -2, 1), Vec3(0, 2, 1), Vec3(0, 2, 3), Vec3(0, -2, 3)};
+  EXPECT_THROW(ref::btmPlateOnGroundField(k, lifted, 0.0, Vec3(-1, 0, 1), Vec3(2, 0, 1), 1), diffray::core::InputError);
+  EXPECT_THROW(ref::btmPlateOnGroundField(k, plate4x2(), 0.0, Vec3(-1, 0, -1), Vec3(2, 0, 1), 1), diffray::core::InputError);
+}
+
+TEST(ReferenceBtmPlate, BandLevelIsTheEnergyMeanOfItsFrequencies) {
+  // The band level against the mean of |u·R|² computed here at the band grid's midpoints.
+  const ref::BtmPlate plate = plate4x2();
+  const Vec3 s(-2.0, 0.2, 0.5), r(2.0, -0.4, 1.1);
+  const double lo = 177.0, hi = 355.0, c = 343.0;
+  double mean = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    const double hz = lo + (j + 0.5) * (hi - lo) / 3.0;
+    mean += std::norm(ref::btmPlateField(2.0 * kPi * hz / c, plate, s, r, 1).total() * (r - s).norm()) / 3.0;
+  }
+  EXPECT_NEAR(ref::btmPlateBandLevelDb(lo, hi, 3, c, plate, std::nan(""), s, r, 1), 10.0 * std::log10(mean), 1e-12);
+}
+
 }  // namespace

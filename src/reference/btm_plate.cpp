@@ -9,6 +9,7 @@
 #include "diffray/core/error.h"
 #include "diffray/reference/btm_edge.h"
 #include "diffray/reference/btm_kernel.h"
+#include "diffray/reference/band_grid.h"
 
 namespace diffray::reference {
 namespace {
@@ -49,6 +50,9 @@ PlateFrame checkPlate(const BtmPlate& plate) {
     const Vec3 turn = (plate.vertices[(i + 1) % n] - a).cross(plate.vertices[(i + 2) % n] - plate.vertices[(i + 1) % n]);
     if (turn.dot(f.normal) < -1e-12 * f.scale * f.scale)
       throw core::InputError("plate", "is not convex at vertex " + std::to_string((i + 1) % n));
+    // Two edges in line would be one edge split in two (the edge-to-edge term between them is undefined).
+    if (turn.dot(f.normal) <= 1e-12 * f.scale * f.scale)
+      throw core::InputError("plate", "vertex " + std::to_string((i + 1) % n) + " lies in line with its neighbours");
   }
   return f;
 }
@@ -181,6 +185,61 @@ BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, cons
             u.second_order += edgePair(wavenumber_rad_m, edges[i], edges[j], face, source, receiver, scale);
   }
   return u;
+}
+
+BtmPlateField btmPlateOnGroundField(double wavenumber_rad_m, const BtmPlate& plate, double ground_z_m,
+                                    const Vec3& source, const Vec3& receiver, int order) {
+  core::requireFinite("ground height", ground_z_m);
+  const PlateFrame f = checkPlate(plate);
+  const double tol = 1e-9 * std::max(1.0, f.scale + std::abs(ground_z_m));
+  if (std::abs(f.normal.z()) > 1e-9) throw core::InputError("plate", "must stand perpendicular to the ground");
+  const std::size_t n = plate.vertices.size();
+  std::size_t foot = n;  // the edge (foot, foot + 1) on the ground
+  for (std::size_t i = 0; i < n; ++i) {
+    if (plate.vertices[i].z() < ground_z_m - tol) throw core::InputError("plate", "reaches below the ground");
+    if (std::abs(plate.vertices[i].z() - ground_z_m) <= tol && std::abs(plate.vertices[(i + 1) % n].z() - ground_z_m) <= tol)
+      foot = i;
+  }
+  if (foot == n) throw core::InputError("plate", "has no edge on the ground (z = " + std::to_string(ground_z_m) + ")");
+  if (!(source.z() > ground_z_m + tol) || !(receiver.z() > ground_z_m + tol))
+    throw core::InputError("ground", "the source and the receiver must lie above it");
+  // The union: from the foot's second vertex round the plate to its first, then the mirror images of the
+  // vertices above the ground in reverse order (a convex polygon: the foot edge is straight, the plate is
+  // perpendicular to the ground).
+  const auto mirror = [ground_z_m](const Vec3& v) { return Vec3(v.x(), v.y(), 2.0 * ground_z_m - v.z()); };
+  BtmPlate both;
+  for (std::size_t k = 0; k < n; ++k) both.vertices.push_back(plate.vertices[(foot + 1 + k) % n]);
+  for (std::size_t k = n - 1; k-- > 1;) both.vertices.push_back(mirror(plate.vertices[(foot + 1 + k) % n]));
+  // A ground vertex whose two edges meet the ground at right angles now lies in line with its neighbours.
+  for (std::size_t i = 0; i < both.vertices.size() && both.vertices.size() > 3;) {
+    const std::size_t m = both.vertices.size();
+    const Vec3 &a = both.vertices[(i + m - 1) % m], &b = both.vertices[i], &c = both.vertices[(i + 1) % m];
+    if ((b - a).cross(c - b).norm() <= 1e-12 * (b - a).norm() * (c - b).norm()) both.vertices.erase(both.vertices.begin() + static_cast<long>(i));
+    else ++i;
+  }
+  const BtmPlateField direct = btmPlateField(wavenumber_rad_m, both, source, receiver, order);
+  const BtmPlateField image = btmPlateField(wavenumber_rad_m, both, mirror(source), receiver, order);
+  BtmPlateField u;
+  u.direct = direct.direct + image.direct;
+  u.specular = direct.specular + image.specular;
+  u.diffracted = direct.diffracted + image.diffracted;
+  u.second_order = direct.second_order + image.second_order;
+  return u;
+}
+
+double btmPlateBandLevelDb(double f_lo_hz, double f_hi_hz, int points, double sound_speed_m_s, const BtmPlate& plate,
+                           double ground_z_m, const Vec3& source, const Vec3& receiver, int order) {
+  core::requirePositive("speed of sound", sound_speed_m_s);
+  const std::vector<double> grid = bandGridHz("btmPlateBandLevelDb", f_lo_hz, f_hi_hz, points);
+  const double r = (receiver - source).norm();
+  double energy = 0.0;
+  for (double hz : grid) {
+    const double k = 2.0 * kPi * hz / sound_speed_m_s;
+    const BtmPlateField u = std::isnan(ground_z_m) ? btmPlateField(k, plate, source, receiver, order)
+                                                   : btmPlateOnGroundField(k, plate, ground_z_m, source, receiver, order);
+    energy += std::norm(u.total() * r);
+  }
+  return 10.0 * std::log10(energy / static_cast<double>(grid.size()));
 }
 
 }  // namespace diffray::reference

@@ -46,4 +46,18 @@ struct BtmPlateField {
 BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, const core::Vec3& source,
                             const core::Vec3& receiver, int order = 2);
 
+/// The same plate standing on a rigid ground, the plane z = ground_z_m: one of its edges lies on the ground
+/// and the plate is perpendicular to it. By the image principle the ground is replaced by the plate's mirror
+/// image, which with the plate forms one plate (the union, twice as tall), and the source's mirror image:
+/// u = u_union(S, R) + u_union(S', R), S' = S mirrored in the ground (exact for a rigid plane). Source and
+/// receiver above the ground. Throws core::InputError when the plate does not stand on the ground so.
+BtmPlateField btmPlateOnGroundField(double wavenumber_rad_m, const BtmPlate& plate, double ground_z_m,
+                                    const core::Vec3& source, const core::Vec3& receiver, int order = 2);
+
+/// 10·log10 of the mean of |u·R|² (R the source–receiver distance: the level re the free field) over
+/// `points` frequencies at the midpoints of equal parts of [f_lo, f_hi] (band_grid.h): the energy average
+/// of a band. `ground_z_m` NaN: the plate in free field, else standing on that ground.
+double btmPlateBandLevelDb(double f_lo_hz, double f_hi_hz, int points, double sound_speed_m_s, const BtmPlate& plate,
+                           double ground_z_m, const core::Vec3& source, const core::Vec3& receiver, int order = 2);
+
 }  // namespace diffray::reference
