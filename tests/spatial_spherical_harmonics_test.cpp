@@ -2,7 +2,7 @@
 // - the closed forms of orders 0–3 in Cartesian components, written out here from the AmbiX definition
 //   (N_n^|m| P_n^|m| with the factorials worked by hand): e.g. ACN 4 = √3·x·y, ACN 12 = z(5z² − 3)/2;
 // - orthonormality to order 7 by quadrature over the sphere written here (Gauss–Legendre in z = sin θ,
-//   its nodes found by Newton's method on P_24 here, and the equally spaced rule in φ: both exact for the
+//   24 nodes by Newton's method on P_24 in tests/quadrature_rules.h, and the equally spaced rule in φ: both exact for the
 //   polynomial and trigonometric degrees involved):
 //   ∫ Y_i·Y_j dΩ = 4π/(2n + 1)·δ_ij under SN3D;
 // - invariance under the direction's length, and bad input.
@@ -14,6 +14,7 @@
 
 #include "diffray/core/error.h"
 #include "diffray/spatial/spherical_harmonics.h"
+#include "quadrature_rules.h"
 
 namespace {
 
@@ -45,34 +46,11 @@ TEST(SpatialSphericalHarmonics, OrdersZeroToThreeMatchTheirClosedForms) {
   }
 }
 
-// Gauss–Legendre nodes and weights on [−1, 1] (Newton's method on P_n from the usual first guesses).
-void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(static_cast<std::size_t>(n), 0.0);
-  w.assign(static_cast<std::size_t>(n), 0.0);
-  for (int i = 0; i < n; ++i) {
-    double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = t;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (t * p1 - p0) / (t * t - 1.0);
-      const double step = p1 / dp;
-      t -= step;
-      if (std::abs(step) < 1e-16) break;
-    }
-    x[static_cast<std::size_t>(i)] = t;
-    w[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - t * t) * dp * dp);
-  }
-}
-
 TEST(SpatialSphericalHarmonics, OrthogonalWithSn3dNormsToOrderSeven) {
   const int order = 7, nc = sp::ambisonicChannels(order);
   const int nphi = 64;  // products of order ≤ 7 harmonics: degree ≤ 14 in z and in φ; 24 nodes, 64 angles
-  std::vector<double> zs, ws;
-  gaussLegendre(24, zs, ws);
+  const diffray::testing::Rule gl = diffray::testing::gaussRule(24);
+  const std::vector<double>&zs = gl.nodes, &ws = gl.weights;
   std::vector<std::vector<double>> gram(nc, std::vector<double>(nc, 0.0));
   std::vector<double> y(nc);
   for (std::size_t i = 0; i < zs.size(); ++i) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "diffray/wbsdf/table.h"
+#include "quadrature_rules.h"
 #include "temp_dir.h"
 
 namespace diffray::testing {
@@ -40,36 +41,6 @@ inline double halfPlaneWdf(double x, double u) {
 }
 
 // ---- Quadrature written for these tests ----------------------------------------------------------------
-
-struct Rule {
-  std::vector<double> nodes, weights;
-};
-
-/// n-point Gauss–Legendre on [−1, 1] by Newton's method on P_n (Numerical Recipes' gauleg).
-inline Rule gaussRule(int n) {
-  Rule r;
-  r.nodes.resize(n);
-  r.weights.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 0.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);
-      const double step = p1 / dp;
-      x -= step;
-      if (std::abs(step) < 1e-16) break;
-    }
-    r.nodes[i] = x;
-    r.weights[i] = 2.0 / ((1.0 - x * x) * dp * dp);
-  }
-  return r;
-}
 
 inline const Rule& rule10() {
   static const Rule r = gaussRule(10);
