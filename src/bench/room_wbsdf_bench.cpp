@@ -10,6 +10,8 @@
 // image sources included, as a user waits for them); the anchor is `none` on the same scene in the same run.
 #include "room_wbsdf_bench.h"
 
+#include <algorithm>
+#include <string>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -53,23 +55,24 @@ Run run(const room::Room& room, const std::string& model, std::uint64_t rays, st
   return r;
 }
 
-// Figures of `a` outside one JND of `ref`.
-int outsideJnd(const Figures& a, const Figures& ref) {
+// Figures of `a` outside one JND of `ref`; their names ("LISTENER BAND figure") appended to `names` if given.
+int outsideJnd(const Figures& a, const Figures& ref, const room::Room* room = nullptr,
+               std::vector<std::string>* names = nullptr) {
   int outside = 0;
-  const auto check = [&](double x, double y, bool relative, double jnd) {
+  const auto check = [&](double x, double y, bool relative, double jnd, std::size_t l, std::size_t b, const char* what) {
     if (std::isnan(x) && std::isnan(y)) return;
-    if (std::isnan(x) || std::isnan(y)) {
-      ++outside;
-      return;
-    }
-    if (std::abs(relative ? x / y - 1.0 : x - y) > jnd) ++outside;
+    const bool out = std::isnan(x) || std::isnan(y) || std::abs(relative ? x / y - 1.0 : x - y) > jnd;
+    if (!out) return;
+    ++outside;
+    if (names && room)
+      names->push_back(room->listeners[l].name + " " + room->bands.label(static_cast<int>(b)) + " Hz " + what);
   };
   for (std::size_t l = 0; l < a.size(); ++l)
     for (std::size_t b = 0; b < a[l].size(); ++b) {
-      check(a[l][b].edt, ref[l][b].edt, true, 0.05);
-      check(a[l][b].t30, ref[l][b].t30, true, 0.05);
-      check(a[l][b].c50, ref[l][b].c50, false, 1.0);
-      check(a[l][b].c80, ref[l][b].c80, false, 1.0);
+      check(a[l][b].edt, ref[l][b].edt, true, 0.05, l, b, "EDT");
+      check(a[l][b].t30, ref[l][b].t30, true, 0.05, l, b, "T30");
+      check(a[l][b].c50, ref[l][b].c50, false, 1.0, l, b, "C50");
+      check(a[l][b].c80, ref[l][b].c80, false, 1.0, l, b, "C80");
     }
   return outside;
 }
@@ -80,6 +83,7 @@ struct Converged {
   double seconds = 0.0;
   double reference_seconds = 0.0;
   int figures = 0;
+  std::vector<std::string> last_outside;  ///< the figures outside one JND (either seed) one step before
 };
 
 Converged converge(const room::Room& room, const std::string& model, std::uint64_t reference_rays) {
@@ -93,11 +97,17 @@ Converged converge(const room::Room& room, const std::string& model, std::uint64
     double seconds = 0.0;
     bool ok = true;
     int wav_outside = 0;
+    std::vector<std::string> outside;
     for (std::uint64_t seed : {1, 2}) {
       const Run r = run(room, model, rays, seed);
       seconds += 0.5 * r.seconds;
-      ok = ok && outsideJnd(r.figures, ref.figures) == 0;
+      ok = outsideJnd(r.figures, ref.figures, &room, &outside) == 0 && ok;
       wav_outside += outsideJnd(r.wav, ref.wav);
+    }
+    if (!ok) {
+      std::sort(outside.begin(), outside.end());
+      outside.erase(std::unique(outside.begin(), outside.end()), outside.end());
+      c.last_outside = outside;
     }
     if (ok) {
       c.rays = rays;
@@ -122,7 +132,8 @@ void benchRoomWbsdf(const std::string& room_path, const std::string& label, std:
                              {"reference_s", by_model[m].reference_seconds},
                              {"figures", by_model[m].figures}, {"rays_to_1_jnd", by_model[m].rays},
                              {"seconds_to_1_jnd", by_model[m].seconds},
-                             {"wav_figures_outside_1_jnd_there", by_model[m].wav_outside}};
+                             {"wav_figures_outside_1_jnd_there", by_model[m].wav_outside},
+                             {"outside_1_jnd_one_step_before", by_model[m].last_outside}};
     std::cout << j.dump() << std::endl;
   }
   const bool both = by_model[0].rays > 0 && by_model[1].rays > 0;
