@@ -20,6 +20,7 @@
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/ir/metrics.h"
+#include "diffray/ir/strength.h"
 #include "diffray/ir/synthesis.h"
 #include "diffray/ir/uncertainty.h"
 #include "diffray/room/checks.h"
@@ -243,6 +244,19 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       nlohmann::ordered_json wav_json = ir::metricsJson(room.bands, from_wav);
       ir::addUncertaintyJson(band_json, room.bands, marks_hist);
       ir::addUncertaintyJson(wav_json, room.bands, marks_wav);
+      // Strength G (ISO 3382-1 A.2.1) re the sources' total power at 10 m, from the whole band energy.
+      double power_w = 0.0;
+      for (const room::Source& s : room.sources) power_w += s.power_w;
+      const std::vector<ir::Strength> g = ir::strengthPerBand(resp, power_w);
+      ir::addStrengthJson(band_json, room.bands, g);
+      std::string g_line = "  G dB (strength, re the free field at 10 m):";
+      for (int b = 0; b < room.bands.size(); ++b) {
+        const ir::Strength& gb = g[static_cast<std::size_t>(b)];
+        char cell[48];
+        if (std::isfinite(gb.g_db)) std::snprintf(cell, sizeof cell, " %s %.1f", room.bands.label(b).c_str(), gb.g_db);
+        else std::snprintf(cell, sizeof cell, " %s -", room.bands.label(b).c_str());
+        g_line += cell;
+      }
       listeners.push_back({{"name", li.name},
                            {"position_m", {li.position_m.x(), li.position_m.y(), li.position_m.z()}},
                            {"radius_m", li.radius_m},
@@ -252,7 +266,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                            {"bands", band_json},
                            {"bands_from_wav", wav_json}});
       table += "listener " + li.name + " (from the energy histogram):\n" +
-               ir::metricsTable(room.bands, from_hist, &marks_hist);
+               ir::metricsTable(room.bands, from_hist, &marks_hist) + g_line + "\n";
       table += "listener " + li.name + " (from the synthesized WAV; standard errors and flags from the histogram):\n" +
                ir::metricsTable(room.bands, from_wav, &marks_wav);
     }

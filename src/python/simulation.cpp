@@ -18,6 +18,7 @@
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/diffray.h"
+#include "diffray/ir/strength.h"
 #include "diffray/ir/uncertainty.h"
 #include "diffray/render/film.h"
 #include "diffray/render/light_tracer.h"
@@ -198,6 +199,9 @@ py::dict metrics(const Simulation& s, long listener) {
                                    figures, marks));
   nlohmann::ordered_json bands = ir::metricsJson(s.room.bands, figures);
   ir::addUncertaintyJson(bands, s.room.bands, marks);
+  double power_w = 0.0;
+  for (const room::Source& src : s.room.sources) power_w += src.power_w;
+  ir::addStrengthJson(bands, s.room.bands, ir::strengthPerBand(response, power_w));
   const py::object loads = py::module_::import("json").attr("loads");
   py::dict out;
   for (int b = 0; b < s.room.bands.size(); ++b) {
@@ -274,7 +278,7 @@ void bindSimulation(py::module_& m) {
            "`diffray ir --seed SEED`.")
       .def("metrics", &metrics, py::arg("listener") = 0,
            "ISO 3382-1 figures from the listener's energy histogram, those of `diffray ir --json` (bands): "
-           "{band Hz: {T20, T30, EDT (s), C50, C80 (dB), D50, Ts (s), decay_range_db, se: {figure: standard "
+           "{band Hz: {T20, T30, EDT (s), C50, C80 (dB), D50, Ts (s), decay_range_db, g_db (strength G), se: {figure: standard "
            "error}, flag: 'ok' | 'noisy' | 'negative_energy', noisy: [figures], not_available_negative_energy: "
            "[figures], negative_energy_fraction}}, None where a figure cannot be measured. Noisy or "
            "negative-energy bands also give a UserWarning, as the CLI warns.")

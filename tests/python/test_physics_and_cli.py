@@ -53,6 +53,7 @@ def test_same_numbers_as_the_cli(tmp_path, cli):
                 assert mine[int(band)][name] == figures[key], (index, band, key)
             # the range, the standard errors and the marks of the JSON, under Python's names
             assert mine[int(band)]["decay_range_db"] == figures["decay_range_db"], (index, band)
+            assert mine[int(band)]["g_db"] == figures["g_db"], (index, band)
             names = dict(t20="T20", t30="T30", edt="EDT", c50="C50", c80="C80", d50="D50", ts="Ts")
             assert mine[int(band)]["se"] == {names.get(k, k): v for k, v in figures["se"].items()}, (index, band)
             assert mine[int(band)]["flag"] == figures["flag"], (index, band)
