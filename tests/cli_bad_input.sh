@@ -57,6 +57,10 @@ fi
 expect_error "missing IR file"        metrics "$tmp/none.wav"
 expect_error "text file named .wav"   metrics "$tmp/text.wav"
 expect_error "NaN in a WAV"           metrics "$tmp/nan.wav"
+# A 169-byte FLAC whose header claims 2^36 - 1 frames: refused before work, the message saying it is a claim.
+flac_claiming "$tmp/lie.flac" 68719476735
+expect_clean "metrics: a header claiming 2^36 - 1 frames" "out.csv*" "its header claims 68719476735 frames" \
+  metrics "$tmp/lie.flac"
 # ok.wav's header with two zero samples.
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00\x00\x00\xee\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00' >"$tmp/silent.wav"
 expect_error "a silent WAV"           metrics "$tmp/silent.wav"

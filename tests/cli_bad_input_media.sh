@@ -16,6 +16,10 @@ expect_auralize_error() {  # expect_auralize_error DESCRIPTION ARGS...
 printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x44\xac\x00\x00\x10\xb1\x02\x00\x04\x00\x20\x00data\x08\x00\x00\x00\x00\x00\x80\x3f\x00\x00\x00\x3f' >"$tmp/ok44.wav"
 expect_auralize_error "missing IR file"        --ir "$tmp/none.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav"
 expect_auralize_error "missing input file"     --ir "$tmp/ok.wav" --in "$tmp/none.wav" -o "$tmp/wet.wav"
+# A dry FLAC whose header claims 2^36 - 1 frames: the output-size check names the input and the claim.
+flac_claiming "$tmp/lie.flac" 68719476735
+expect_clean "auralize: a dry header claiming 2^36 - 1 frames" "wet.*" "lie.flac: its header claims 68719476735 frames" \
+  auralize --ir "$tmp/ok.wav" --in "$tmp/lie.flac" -o "$tmp/wet.wav"
 expect_auralize_error "rate mismatch, --no-resample" --ir "$tmp/ok.wav" --in "$tmp/ok44.wav" -o "$tmp/wet.wav" --no-resample
 # Without --no-resample the IR is resampled to the input's rate: one info line, a 44.1 kHz output (and, the
 # click convolved with itself peaking above 1, the clipping warning only).

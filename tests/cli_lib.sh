@@ -70,3 +70,17 @@ printf 'RIFF\x2c\x00\x00\x00WAVEfmt \x10\x00\x00\x00\x03\x00\x01\x00\x80\xbb\x00
 mkdir -p "$tmp/lib"
 cp "$rooms/shoebox.json" "$rooms/materials.json" "$rooms/barrier.json" "$tmp/lib/"
 printf 'x,amplitude,phase\n-1e-4,1,0\n1e-4,1,0\n' >"$tmp/lib/p.csv"
+
+# A 16-bit mono 48 kHz FLAC of 64 frames whose STREAMINFO claims FRAMES (< 2^36): a lying header.
+flac_claiming() {  # flac_claiming OUT.flac FRAMES
+  sox -n -r 48000 -c 1 -b 16 "$1" synth 64s sine 440 2>/dev/null && python3 - "$1" "$2" <<'PY'
+import sys
+path, claimed = sys.argv[1], int(sys.argv[2])
+b = bytearray(open(path, "rb").read())
+assert b[:4] == b"fLaC" and b[4] & 0x7f == 0, "STREAMINFO first"
+field = int.from_bytes(b[18:26], "big")
+field = (field & ~((1 << 36) - 1)) | claimed
+b[18:26] = field.to_bytes(8, "big")
+open(path, "wb").write(bytes(b))
+PY
+}

@@ -202,8 +202,12 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     dsp::MultichannelConvolver conv;
     conv.init(fft_block, ir_channels, dry.channels());
     const int rate = static_cast<int>(dry.sampleRateHz());
-    audio::requireWavFits(o->out, static_cast<double>(dry.frames()) + static_cast<double>(ir_frames) - 1.0,
-                          conv.outputChannels(), rate);
+    try {  // the dry length is the header's claim: the message says so, naming the input
+      audio::requireWavFits(o->out, static_cast<double>(dry.frames()) + static_cast<double>(ir_frames) - 1.0,
+                            conv.outputChannels(), rate);
+    } catch (const core::InputError& e) {
+      throw core::InputError(o->in, "its header claims " + std::to_string(dry.frames()) + " frames; " + e.what());
+    }
     const double gain = std::pow(10.0, o->gain_db / 20.0);
     double peak = 0.0;
     double applied_db = o->gain_db;

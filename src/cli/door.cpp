@@ -202,7 +202,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
     const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);
     if (end_s > static_cast<double>(reader.frames()) / fs)
-      warnings.push_back("the door is still closing when " + opts->in + " ends (at " +
+      warnings.push_back("the door is still closing when " + opts->in + " ends (its header claims " +
+                         std::to_string(reader.frames()) + " frames, " +
                          std::to_string(static_cast<double>(reader.frames()) / fs) + " s); the output's tail is the "
                          "last IR's");
     for (const auto& w : warnings) std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";

@@ -58,11 +58,11 @@ void checkAnalysisMemory(const std::string& file, const std::string& kind) {
   const double need = 8.0 * frames * (reader.channels() + bands + 6.0);
   const double physical = core::physicalMemoryBytes();
   if (physical > 0.0 && need > 0.5 * physical) {
-    char what[200];
+    char what[260];
     std::snprintf(what, sizeof what,
-                  "is %.0f s long; analysing it needs about %.1f GB, more than half of this machine's %.1f GB: "
-                  "cut it to the impulse response",
-                  frames / fs, need / 1e9, physical / 1e9);
+                  "its header claims %.0f frames (%.0f s); analysing that needs about %.1f GB, more than half of "
+                  "this machine's %.1f GB: cut it to the impulse response",
+                  frames, frames / fs, need / 1e9, physical / 1e9);
     throw core::InputError(file, what);
   }
 }
