@@ -218,6 +218,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     std::vector<std::string> metric_warnings;  // noisy or negative bands, one per listener and band
     std::vector<std::vector<std::string>> plot_flags;  // [listener][band]: the histogram's flags
     std::vector<std::vector<double>> traced_t30;       // [listener][band], from the histograms
+    double total_power_w = 0.0;
+    for (const room::Source& s : room.sources) total_power_w += s.power_w;
     for (std::size_t l = 0; l < room.listeners.size(); ++l) {
       const auto& resp = sim.listeners[l];
       channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
@@ -245,9 +247,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       ir::addUncertaintyJson(band_json, room.bands, marks_hist);
       ir::addUncertaintyJson(wav_json, room.bands, marks_wav);
       // Strength G (ISO 3382-1 A.2.1) re the sources' total power at 10 m, from the whole band energy.
-      double power_w = 0.0;
-      for (const room::Source& s : room.sources) power_w += s.power_w;
-      const std::vector<ir::Strength> g = ir::strengthPerBand(resp, power_w);
+      const std::vector<ir::Strength> g = ir::strengthPerBand(resp, total_power_w);
       ir::addStrengthJson(band_json, room.bands, g);
       std::string g_line = "  G dB (strength, re the free field at 10 m):";
       for (int b = 0; b < room.bands.size(); ++b) {

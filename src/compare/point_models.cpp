@@ -28,13 +28,6 @@ class HalfPlaneModel : public PointModel {
   HalfPlaneModel(const room::Occluder& o, double c, bool rigid)
       : e0_(o.origin_m - o.half_x_m * o.ex), x_(-o.ex), y_(o.normal), z_(o.ey), c_(c), rigid_(rigid) {}
   std::string name() const override { return "exact"; }
-  std::vector<double> relativeEnergy(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
-    const reference::CylindricalPoint ps = toFrame(s), pl = toFrame(l);
-    const double r = (l - s).norm();
-    std::vector<double> out;
-    for (double fj : f) out.push_back(std::norm(reference::halfPlanePointSource(c_ / fj, ps, pl, rigid_) * r));
-    return out;
-  }
   std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
     const reference::CylindricalPoint ps = toFrame(s), pl = toFrame(l);
     const double r = (l - s).norm();
@@ -70,13 +63,8 @@ class ApertureModel : public PointModel {
   }
   std::string name() const override { return incoherent_ ? "exact-incoherent-floor" : "exact"; }
   std::vector<double> relativeEnergy(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
-    const double side = (s - o_.origin_m).dot(o_.normal) < 0.0 ? 1.0 : -1.0;  // the source at z < 0
-    const auto frame = [&](const Vec3& p) {
-      const Vec3 d = p - o_.origin_m;
-      return reference::CartesianPoint{d.dot(o_.ex), d.dot(o_.ey), side * d.dot(o_.normal)};
-    };
     const double r = (l - s).norm();
-    const reference::CartesianPoint ps = frame(s), pl = frame(l);
+    const reference::CartesianPoint ps = frame(s, s), pl = frame(s, l);
     reference::CartesianPoint mirror = pl;
     if (floor_) mirror.y_m = 2.0 * *floor_ - pl.y_m;
     std::vector<double> out;
@@ -89,18 +77,21 @@ class ApertureModel : public PointModel {
   }
   std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
     if (floor_) return std::vector<std::complex<double>>(f.size(), {std::nan(""), std::nan("")});  // energies added
-    const double side = (s - o_.origin_m).dot(o_.normal) < 0.0 ? 1.0 : -1.0;
-    const auto frame = [&](const Vec3& p) {
-      const Vec3 d = p - o_.origin_m;
-      return reference::CartesianPoint{d.dot(o_.ex), d.dot(o_.ey), side * d.dot(o_.normal)};
-    };
     const double r = (l - s).norm();
+    const reference::CartesianPoint ps = frame(s, s), pl = frame(s, l);
     std::vector<std::complex<double>> out;
-    for (double fj : f) out.push_back(reference::aperturePointSource(c_ / fj, screen_, frame(s), frame(l)) * unfree(fj, r, c_));
+    for (double fj : f) out.push_back(reference::aperturePointSource(c_ / fj, screen_, ps, pl) * unfree(fj, r, c_));
     return out;
   }
 
  private:
+  // p in the screen frame, its z axis turned so that the source s lies at z < 0.
+  reference::CartesianPoint frame(const Vec3& s, const Vec3& p) const {
+    const double side = (s - o_.origin_m).dot(o_.normal) < 0.0 ? 1.0 : -1.0;
+    const Vec3 d = p - o_.origin_m;
+    return reference::CartesianPoint{d.dot(o_.ex), d.dot(o_.ey), side * d.dot(o_.normal)};
+  }
+
   room::Occluder o_;
   reference::ApertureScreen screen_;
   double c_;
@@ -116,13 +107,6 @@ class UtdPointModel : public PointModel {
     model_ = std::make_unique<utd::UtdModel>(room_, geometry_, opt);
   }
   std::string name() const override { return "utd"; }
-  std::vector<double> relativeEnergy(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
-    const double r = (l - s).norm();
-    const std::vector<utd::Path> paths = model_->paths(s, l);  // geometry only: once for every frequency
-    std::vector<double> out;
-    for (double fj : f) out.push_back(std::norm(model_->total(paths, fj, c_) * r));
-    return out;
-  }
   std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
     const double r = (l - s).norm();
     const std::vector<utd::Path> paths = model_->paths(s, l);
@@ -193,6 +177,13 @@ double bandRelativeEnergy(const PointModel& m, const Vec3& source, const Vec3& l
     }
   }
   return sum / n;
+}
+
+std::vector<double> PointModel::relativeEnergy(const Vec3& source, const Vec3& listener,
+                                               const std::vector<double>& freqs_hz) const {
+  std::vector<double> out;
+  for (const std::complex<double>& p : relativePressure(source, listener, freqs_hz)) out.push_back(std::norm(p));
+  return out;
 }
 
 }  // namespace diffray::compare

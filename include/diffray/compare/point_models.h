@@ -21,9 +21,10 @@ class PointModel {
  public:
   virtual ~PointModel() = default;
   virtual std::string name() const = 0;
-  /// |p(f)·R|² at `listener` for the source at `source`, for each frequency in `freqs_hz`.
+  /// |p(f)·R|² at `listener` for the source at `source`, for each frequency in `freqs_hz`: |relativePressure|²
+  /// unless the model adds arrivals as energies.
   virtual std::vector<double> relativeEnergy(const core::Vec3& source, const core::Vec3& listener,
-                                             const std::vector<double>& freqs_hz) const = 0;
+                                             const std::vector<double>& freqs_hz) const;
   /// p(f)/p_free(f) = p·R·e^{ikR} (time factor e^{iωt}, p_free = e^{−ikR}/R): magnitude and phase re the
   /// free field at the same distance, for each frequency. NaN where the model has no phase (a reference
   /// that adds two arrivals as energies).
