@@ -20,7 +20,10 @@
 
 #include "diffray/ir/metrics.h"
 #include "diffray/ir/synthesis.h"
+#include "diffray/core/rng.h"
+#include "diffray/room/air.h"
 #include "diffray/room/scene_file.h"
+#include "diffray/transport/room_occluders.h"
 #include "diffray/transport/room_simulation.h"
 
 namespace diffray::bench {
@@ -119,10 +122,55 @@ Converged converge(const room::Room& room, const std::string& model, std::uint64
   return c;  // rays 0: not within reach below a quarter of the reference's rays
 }
 
+// The relative second moment E[w_b²]/E[w_b]² of each band's portal weight (RoomOccluders::scatterPortal) for
+// a ray meeting occluder k at its centre along its normal, with the band picked uniformly and the frequency
+// uniformly inside it, as the tracer draws them: the factor by which the portal multiplies the variance of
+// what each band carries past the opening (1 for a plain opening). One direction serves every band, so the
+// bands whose laws differ most from the mixture of all of them pay the most.
+std::vector<double> portalSecondMoments(const room::Room& room, const transport::RoomOccluders& occ, int k,
+                                        double speed_m_s) {
+  const room::Occluder& o = room.occluders[static_cast<std::size_t>(k)];
+  const int n = room.bands.size();
+  std::vector<double> sum(static_cast<std::size_t>(n), 0.0), sum2(sum);
+  core::Rng seeder(7, 0);
+  core::FastRng rng(seeder);
+  const int draws = 200'000;
+  for (int d = 0; d < draws; ++d) {
+    const double x = rng.uniform() * n;
+    const int pick = std::min(n - 1, static_cast<int>(x));
+    const double place = std::min(1.0, x - pick);
+    double lambda[core::kMaxBands], w[core::kMaxBands], xi[4];
+    for (int b = 0; b < n; ++b)
+      lambda[b] = speed_m_s / (room.bands.lowerHz(b) + place * (room.bands.upperHz(b) - room.bands.lowerHz(b)));
+    for (double& v : xi) v = rng.uniform();
+    if (!occ.scatterPortal(k, o.origin_m, o.normal, lambda, n, pick, xi, w).alive) continue;
+    for (int b = 0; b < n; ++b) sum[static_cast<std::size_t>(b)] += w[b], sum2[static_cast<std::size_t>(b)] += w[b] * w[b];
+  }
+  std::vector<double> m2;
+  for (int b = 0; b < n; ++b) {
+    const double mean = sum[static_cast<std::size_t>(b)] / draws;
+    m2.push_back(mean > 0.0 ? sum2[static_cast<std::size_t>(b)] / draws / (mean * mean) : NAN);
+  }
+  return m2;
+}
+
 }  // namespace
 
 void benchRoomWbsdf(const std::string& room_path, const std::string& label, std::uint64_t reference_rays) {
   const room::Room room = room::loadRoom(room_path);
+  {
+    const transport::RoomOccluders occ(room, room::speedOfSound(room.air) / room.bands.upperHz(room.bands.size() - 1));
+    for (std::size_t k = 0; k < room.occluders.size(); ++k) {
+      if (!occ.nextEventSupported(static_cast<int>(k))) continue;
+      nlohmann::ordered_json m2;
+      const std::vector<double> v = portalSecondMoments(room, occ, static_cast<int>(k), room::speedOfSound(room.air));
+      for (int b = 0; b < room.bands.size(); ++b) m2[room.bands.label(b)] = v[static_cast<std::size_t>(b)];
+      std::cout << nlohmann::ordered_json{{"bench", "room-wbsdf"}, {"room", label}, {"occluder", room.occluders[k].name},
+                                          {"portal_weight_relative_second_moment_at_normal_incidence", m2}}
+                       .dump()
+                << std::endl;
+    }
+  }
   Converged by_model[2];
   const char* models[2] = {"none", "wbsdf"};
   for (int m = 0; m < 2; ++m) {
