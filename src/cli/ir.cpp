@@ -19,6 +19,7 @@
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
+#include "diffray/ir/direction.h"
 #include "diffray/ir/metrics.h"
 #include "diffray/ir/strength.h"
 #include "diffray/ir/synthesis.h"
@@ -197,6 +198,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     so.diffraction = opts->diffraction;
     so.max_diffractions = opts->diffraction_order;
     so.portal = opts->portal;
+    so.directions = true;
     const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
     core::Progress progress("ir " + room.name, rays * room.sources.size());
     so.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
@@ -257,16 +259,34 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         else std::snprintf(cell, sizeof cell, " %s -", room.bands.label(b).c_str());
         g_line += cell;
       }
+      // Where the first 10 ms come from (ir/direction.h), in the listener's frame.
+      nlohmann::ordered_json early = nlohmann::ordered_json::object();
+      std::string dir_line = "  from (first 10 ms; azimuth left of forward / elevation, deg; r_E):";
+      for (int b = 0; b < room.bands.size(); ++b) {
+        const ir::EarlyDirection d = ir::earlyDirection(resp, b, li.forward, li.left, li.up);
+        const auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+        early[room.bands.label(b)] = {{"azimuth_deg", num(d.azimuth_deg)}, {"elevation_deg", num(d.elevation_deg)},
+                                      {"r_e", num(d.r_e)}};
+        char cell[64];
+        if (std::isfinite(d.r_e))
+          std::snprintf(cell, sizeof cell, " %s %+.0f/%+.0f %.2f", room.bands.label(b).c_str(), d.azimuth_deg,
+                        d.elevation_deg, d.r_e);
+        else std::snprintf(cell, sizeof cell, " %s -", room.bands.label(b).c_str());
+        dir_line += cell;
+      }
+      const auto vec = [](const core::Vec3& v) { return nlohmann::ordered_json{v.x(), v.y(), v.z()}; };
       listeners.push_back({{"name", li.name},
                            {"position_m", {li.position_m.x(), li.position_m.y(), li.position_m.z()}},
                            {"radius_m", li.radius_m},
+                           {"orientation", {{"forward", vec(li.forward)}, {"left", vec(li.left)}, {"up", vec(li.up)}}},
+                           {"early_direction", {{"window_ms", 10}, {"bands", early}}},
                            {"image_sources", resp.arrivals.size()},
                            {"negative_energy_fraction", negativeFraction(resp.traced)},
                            {"batches", resp.batches.size()},
                            {"bands", band_json},
                            {"bands_from_wav", wav_json}});
       table += "listener " + li.name + " (from the energy histogram):\n" +
-               ir::metricsTable(room.bands, from_hist, &marks_hist) + g_line + "\n";
+               ir::metricsTable(room.bands, from_hist, &marks_hist) + g_line + "\n" + dir_line + "\n";
       table += "listener " + li.name + " (from the synthesized WAV; standard errors and flags from the histogram):\n" +
                ir::metricsTable(room.bands, from_wav, &marks_wav);
     }

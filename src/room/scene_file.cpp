@@ -236,14 +236,48 @@ struct SceneParser {
     std::set<std::string> names;
     for (std::size_t i = 0; i < n; ++i) {
       const JsonField l = list.at(i);
-      l.allowKeys({"name", "position", "radius_m"});
+      l.allowKeys({"name", "position", "radius_m", "orientation", "look_at"});
       Listener r;
       r.name = l.has("name") ? l["name"].string() : "R" + std::to_string(i + 1);
       claimName(names, r.name, l, "listener");
       r.position_m = l["position"].vec3();
       if (l.has("radius_m")) r.radius_m = l["radius_m"].length();
+      orientation(l, r);
       room.listeners.push_back(r);
     }
+  }
+
+  // A listener's "orientation" {yaw_deg, pitch_deg, roll_deg} (each optional, default 0) or "look_at" [x, y, z].
+  // Yaw turns the head to the left about +z, pitch raises the nose, roll tilts the head towards the right
+  // shoulder: forward/left/up = Rz(yaw)·Ry(−pitch)·Rx(roll) applied to +x, +y, +z. "look_at" faces the point
+  // with the head upright (left horizontal).
+  static void orientation(const JsonField& l, Listener& r) {
+    if (l.has("orientation") && l.has("look_at")) l.fail("give either \"orientation\" or \"look_at\", not both");
+    if (l.has("look_at")) {
+      const Vec3 to = l["look_at"].vec3() - r.position_m;
+      const double n = to.norm();
+      if (!(n > 1e-9)) l["look_at"].fail("the point to look at is the listener's own position");
+      r.forward = to / n;
+      const Vec3 left = Vec3(0, 0, 1).cross(r.forward);
+      if (!(left.norm() > 1e-6))
+        l["look_at"].fail("looking straight up or down leaves the head's roll open: give \"orientation\" instead");
+      r.left = left.normalized();
+      r.up = r.forward.cross(r.left);
+      return;
+    }
+    if (!l.has("orientation")) return;
+    const JsonField o = l["orientation"];
+    o.allowKeys({"yaw_deg", "pitch_deg", "roll_deg"});
+    const double deg = core::kPi / 180.0;
+    const double yaw = o.has("yaw_deg") ? o["yaw_deg"].numberIn(-360.0, 360.0) * deg : 0.0;
+    const double pitch = o.has("pitch_deg") ? o["pitch_deg"].numberIn(-90.0, 90.0) * deg : 0.0;
+    const double roll = o.has("roll_deg") ? o["roll_deg"].numberIn(-180.0, 180.0) * deg : 0.0;
+    const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
+    const double cr = std::cos(roll), sr = std::sin(roll);
+    // Columns of Rz(yaw)·Ry(−pitch)·Rx(roll).
+    r.forward = Vec3(cy * cp, sy * cp, sp);
+    r.left = Vec3(-sy * cr - cy * sp * sr, cy * cr - sy * sp * sr, cp * sr);
+    r.up = Vec3(sy * sr - cy * sp * cr, -cy * sr - sy * sp * cr, cp * cr);
   }
 
   void air(const JsonField& a) {

@@ -151,6 +151,7 @@ std::vector<ir::Arrival> imageSources(const room::Room& room, const RoomGeometry
     ir::Arrival a;
     a.delay_s = d / options.speed_of_sound_m_s;
     a.order = static_cast<int>(planes.size());
+    a.direction = (img - l) / d;
     const double gain = src.power_w * directivityGain(src.directivity, leg.dot(axis)) / (d * d);
     for (int b = 0; b < nb; ++b) {
       double e = gain * std::exp(-options.air_m_per_m[b] * d);

@@ -70,7 +70,9 @@ std::uint64_t Tracer::nextEvent(RoomTraceResult& acc, core::FastRng& rng, const 
     const double path = s.path_m + L;
     const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
     if (bin < 0) continue;
-    acc.listeners[l].add(b, bin, s.e[b] * v * std::exp(-opt.air_m_per_m[b] * path));
+    const double energy = s.e[b] * v * std::exp(-opt.air_m_per_m[b] * path);
+    acc.listeners[l].add(b, bin, energy);
+    if (opt.directions) acc.directions[l].add(b, bin, energy, -qh);
   }
   return served;
 }
@@ -114,8 +116,11 @@ bool Tracer::nextEventViaFloor(RoomTraceResult& acc, core::FastRng& rng, const P
   const double reflect = (1.0 - m.absorption[s.band]) * (1.0 - m.scattering[s.band]);
   const double path = s.path_m + L;
   const int bin = acc.listeners[l].binOf(path / opt.speed_of_sound_m_s);
-  if (v != 0.0 && bin >= 0)
-    acc.listeners[l].add(s.band, bin, s.e[s.band] * v * reflect * std::exp(-opt.air_m_per_m[s.band] * path));
+  if (v != 0.0 && bin >= 0) {
+    const double energy = s.e[s.band] * v * reflect * std::exp(-opt.air_m_per_m[s.band] * path);
+    acc.listeners[l].add(s.band, bin, energy);
+    if (opt.directions) acc.directions[l].add(s.band, bin, energy, -leg / leg_len);
+  }
   return true;
 }
 

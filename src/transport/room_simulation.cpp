@@ -252,6 +252,7 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
           ir::Arrival a;
           a.delay_s = pe.delay_s;
           a.order = path.order;
+          a.direction = (path.points[path.points.size() - 2] - path.points.back()).normalized();
           for (int b = 0; b < nb; ++b) a.energy[b] = pe.energy[b] * gain * std::exp(-sim.air_m_per_m[b] * path.length_m);
           sim.listeners[l].arrivals.push_back(a);
           ++sim.diffraction_paths;
@@ -275,7 +276,9 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
   to.occluders = occluders.get();
   to.max_diffractions = options.max_diffractions;
   to.portal = options.portal;
+  to.directions = options.directions;
   std::vector<std::uint64_t> crossings;
+  std::vector<receiver::DirectionHistogram> directions;
   for (int s = 0; s < static_cast<int>(room.sources.size()); ++s) {
     to.seed = options.seed + 1000003ull * static_cast<std::uint64_t>(s);  // independent streams per source
     RoomTraceResult res = traceRoom(room, geometry, s, to);
@@ -283,8 +286,11 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     for (std::size_t l = 0; l < res.crossings.size(); ++l) crossings[l] += res.crossings[l];
     if (sim.traced.empty()) {
       sim.traced = res.listeners;
+      directions = res.directions;
     } else {
       for (std::size_t l = 0; l < sim.traced.size(); ++l) sim.traced[l].merge(res.listeners[l]);
+      for (std::size_t l = 0; l < directions.size() && l < res.directions.size(); ++l)
+        directions[l].merge(res.directions[l]);
     }
     sim.rays += res.rays;
     sim.segments += res.segments;
@@ -317,6 +323,11 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     for (int b = 0; b < nb; ++b)
       for (int i = 0; i < sim.traced[l].bins(); ++i) r.traced[b][i] = sim.traced[l].value(b, i);
     const receiver::EnergyHistogram& h = sim.traced[l];
+    if (l < directions.size()) {
+      r.directions.assign(nb, std::vector<core::Vec3>(static_cast<std::size_t>(h.bins()), core::Vec3(0, 0, 0)));
+      for (int b = 0; b < nb; ++b)
+        for (int i = 0; i < h.bins(); ++i) r.directions[b][i] = directions[l].value(b, i);
+    }
     for (int k = 0; k < h.batches(); ++k) {
       if (!(h.batchWeight(k) > 0.0)) continue;
       r.batch_weights.push_back(h.batchWeight(k));

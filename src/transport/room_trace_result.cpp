@@ -15,11 +15,13 @@ void RoomTraceResult::merge(const RoomTraceResult& o) {
     listeners = o.listeners;
     crossings = o.crossings;
     in_flight = o.in_flight;
+    directions = o.directions;
   } else {
     for (std::size_t i = 0; i < listeners.size(); ++i) {
       listeners[i].merge(o.listeners[i]);
       crossings[i] += o.crossings[i];
     }
+    for (std::size_t i = 0; i < directions.size() && i < o.directions.size(); ++i) directions[i].merge(o.directions[i]);
     if (in_flight.bins() > 0) in_flight.merge(o.in_flight);
   }
   rays += o.rays;

@@ -90,9 +90,21 @@ void Tracer::scoreListener(RoomTraceResult& acc, std::size_t l, const double* o,
   const double ds = s_mid - air_centre_m[bin];
   const double* att = &air_table[static_cast<std::size_t>(bin) * static_cast<std::size_t>(nb)];
   double* row = acc.listeners[l].openRow(bin);
+  if (!opt.directions) {
+    for (int b = 0; b < nb; ++b) {
+      const double x = opt.air_m_per_m[b] * ds;
+      row[b] += energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
+    }
+    return;
+  }
+  double* to = acc.directions[l].row(bin);  // the energy arrives from −d
   for (int b = 0; b < nb; ++b) {
     const double x = opt.air_m_per_m[b] * ds;
-    row[b] += energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
+    const double e = energy[b] * att[b] * (1.0 - x * (1.0 - x * (0.5 - x / 6.0))) * w;
+    row[b] += e;
+    to[3 * b] -= e * d[0];
+    to[3 * b + 1] -= e * d[1];
+    to[3 * b + 2] -= e * d[2];
   }
 }
 
@@ -388,6 +400,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     r.listeners.assign(room.listeners.size(), receiver::EnergyHistogram(tr.bands, tr.bins, options.bin_s));
     r.crossings.assign(room.listeners.size(), 0);
     if (options.in_flight) r.in_flight = receiver::EnergyHistogram(tr.bands, tr.bins, options.bin_s);
+    if (options.directions) r.directions.assign(room.listeners.size(), receiver::DirectionHistogram(tr.bands, tr.bins));
     return r;
   };
   auto body = [&](RoomTraceResult& acc, core::Rng& rng, std::uint64_t begin, std::uint64_t end) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "diffray/core/bands.h"
+#include "diffray/core/math.h"
 
 namespace diffray::ir {
 
@@ -14,6 +15,9 @@ struct Arrival {
   double delay_s = 0.0;
   core::BandArray energy = core::bandFill(0.0);  ///< per band, J/m²
   int order = 0;                                  ///< reflection order (0 = direct sound)
+  /// Unit vector from the listener towards where the arrival comes from (its last image source or
+  /// diffracting point), world frame; zero when not known.
+  core::Vec3 direction{0, 0, 0};
 };
 
 struct EnergyResponse {
@@ -26,6 +30,9 @@ struct EnergyResponse {
   /// metrics' standard errors (ir/uncertainty.h).
   std::vector<std::vector<std::vector<double>>> batches;
   std::vector<double> batch_weights;
+  /// Where the traced part comes from (receiver/direction_histogram.h), [band][bin]: the energy-weighted sum
+  /// of unit vectors towards its arrivals, world frame, J/m²; empty when not recorded.
+  std::vector<std::vector<core::Vec3>> directions;
 
   int bins() const { return traced.empty() ? 0 : static_cast<int>(traced[0].size()); }
   /// traced + arrivals binned: the band's whole energy histogram (what the metrics are computed from).

@@ -48,6 +48,12 @@ struct Listener {
   std::string name;
   Vec3 position_m{0, 0, 0};
   double radius_m = 0.1;
+  /// The listener's head frame, world coordinates, orthonormal and right-handed: forward, left, up (the
+  /// scene's "orientation" or "look_at", rooms/README.md). Default: facing +x, +z up.
+  Vec3 forward{1, 0, 0}, left{0, 1, 0}, up{0, 0, 1};
+  /// A world vector in the listener's frame: x forward, y left, z up (the frame of AmbiX and of ISO 2631's
+  /// head coordinates), so azimuth atan2(y, x) grows to the left and elevation upwards.
+  Vec3 toLocal(const Vec3& w) const { return {w.dot(forward), w.dot(left), w.dot(up)}; }
 };
 
 struct Air {

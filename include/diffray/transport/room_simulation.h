@@ -34,6 +34,9 @@ struct RoomSimulationOptions {
   /// (RoomTraceOptions::portal: positive, no signed noise in the reverberant field); false: from W(x,·) with
   /// signed weights (the plain estimator, for comparison).
   bool portal = true;
+  /// Record where each listener's energy comes from (ir::EnergyResponse::directions, Arrival::direction is
+  /// always set): three more numbers per band and bin and listener.
+  bool directions = false;
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
   /// Called once every input check has passed, before any tracing (the CLI prints its warnings then, so
   /// that a refused run prints one line only).

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "diffray/core/bands.h"
+#include "diffray/receiver/direction_histogram.h"
 #include "diffray/receiver/energy_histogram.h"
 #include "diffray/receiver/sphere.h"
 #include "diffray/room/room.h"
@@ -59,6 +60,10 @@ struct RoomTraceOptions {
   /// Also tally the energy in flight (RoomTraceResult::in_flight): what the room as a whole still holds
   /// at each time, per band, integrated over each bin. Smooth with few rays: the pilot's decay estimate.
   bool in_flight = false;
+  /// Also tally where each listener's energy comes from (RoomTraceResult::directions): every score adds its
+  /// energy times the unit vector towards where it arrives from (the reverse of the ray's direction; for a
+  /// next-event estimate, towards the occluder's point or its floor image).
+  bool directions = false;
   /// WBSDF diffraction at the room's occluders (null: occluders are plain surfaces, openings pass rays
   /// straight). At its first occluder a ray that carries every band goes on in one of them, chosen at
   /// random (its energy times the band count), at one frequency drawn uniformly inside that band
@@ -93,6 +98,7 @@ struct RoomTraceOptions {
 
 struct RoomTraceResult {
   std::vector<receiver::EnergyHistogram> listeners;  ///< per room listener, J/m² per bin
+  std::vector<receiver::DirectionHistogram> directions;  ///< per listener, with RoomTraceOptions::directions
   std::vector<std::uint64_t> crossings;  ///< per listener: segments that crossed its sphere (scored or not)
   receiver::EnergyHistogram in_flight;   ///< with RoomTraceOptions::in_flight: ∫ energy dt per band and bin
   std::uint64_t rays = 0;
