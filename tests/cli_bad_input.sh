@@ -121,6 +121,9 @@ expect_ir_error "zero-length edge"      "{$mat, $box, $src, $lis, \"occluders\":
 expect_ir_error "duplicate occluder names" "{$mat, $box, $src, $lis, \"occluders\": [{$door, \"name\": \"d\"}, {$door, \"name\": \"d\"}]}"
 expect_ir_error "unknown --diffraction" "$good" --diffraction bogus
 expect_ir_error "--diffraction-order 0" "$good" --diffraction wbsdf --diffraction-order 0
+expect_ir_error "--format unknown"      "$good" --format binaural5
+expect_ir_error "--order 4 (Ambisonics to 3)" "$good" --format ambix --order 4
+expect_ir_error "listener look_at itself" "{$mat, $box, $src, \"listeners\": [{\"position\": [1,1,1], \"look_at\": [1,1,1]}]}"
 printf '%s\n' "$good" >"$tmp/room.json"
 expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000
 expect_error "ir: output not a .wav"     ir "$tmp/room.json" -o "$tmp/out.csv" --rays 1000

@@ -3,6 +3,7 @@
 // J/m², so the direct sound of a 1 W source at 1 m has amplitude 1), OUT.json (the sidecar: metrics per
 // listener from the energy histograms and from the WAV, rays, seed, version, timing, warnings) and OUT.csv
 // (the band × time energy histograms), each atomically. Prints a metrics table (or the sidecar with --json).
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
+#include "diffray/ir/ambisonic_synthesis.h"
 #include "diffray/ir/direction.h"
 #include "diffray/ir/metrics.h"
 #include "diffray/ir/strength.h"
@@ -43,7 +45,18 @@ struct IrOptions {
   std::string diffraction = "none";
   int diffraction_order = 1;
   bool portal = true;
+  std::string format = "omni";
+  int order = 1;
 };
+
+// The Ambisonic IR file of one listener: OUT's stem, the listener's name (characters other than letters,
+// digits, '.', '-' and '_' become '_') and ".ambix.wav".
+std::string ambixFile(const std::string& wav, const std::string& listener) {
+  std::string name = listener;
+  for (char& ch : name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '_')) ch = '_';
+  return withExtension(wav, "." + name + ".ambix.wav");
+}
 
 // Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (negative energy is
 // physical only after integration over a finite aperture, Cuypers et al. 2012, section 2.4: report it rather than clamp
@@ -162,6 +175,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       ->check(outputPathValidator());
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
   addContinuationOption(sub, opts->portal);
+  sub->add_option("--format", opts->format,
+                  "omni (default): one channel per listener; ambix: also one AmbiX file per listener, "
+                  "OUT.LISTENER.ambix.wav ((order+1)^2 channels, ACN order, SN3D; W is the omni channel)")
+      ->check(CLI::IsMember({"omni", "ambix"}));
+  sub->add_option("--order", opts->order, "Ambisonic order of --format ambix: 1, 2 or 3 (default 1)")
+      ->transform(wholeNumberValidator(1, 3));
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -185,7 +204,13 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                 << side_json << " and the histograms " << side_csv << "\n";
     }
     // No output may replace a file the room was read from (-o materials.wav: the material library).
-    checkOutputFiles({wav, side_json, side_csv, opts->plot}, room.input_files);
+    const bool ambix = opts->format == "ambix";
+    std::vector<std::string> ambix_files;
+    if (ambix)
+      for (const room::Listener& li : room.listeners) ambix_files.push_back(ambixFile(wav, li.name));
+    std::vector<std::string> outputs{wav, side_json, side_csv, opts->plot};
+    outputs.insert(outputs.end(), ambix_files.begin(), ambix_files.end());
+    checkOutputFiles(outputs, room.input_files);
     checkPlotOption("--plot", opts->plot);
     room::checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
@@ -216,6 +241,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     buffer.channels = static_cast<int>(room.listeners.size());
     nlohmann::ordered_json listeners = nlohmann::ordered_json::array();
     std::vector<std::vector<double>> channels;
+    std::vector<std::vector<std::vector<double>>> ambisonic;  // [listener][ACN channel], with --format ambix
     std::string table;
     std::vector<std::string> metric_warnings;  // noisy or negative bands, one per listener and band
     std::vector<std::vector<std::string>> plot_flags;  // [listener][band]: the histogram's flags
@@ -224,8 +250,16 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     for (const room::Source& s : room.sources) total_power_w += s.power_w;
     for (std::size_t l = 0; l < room.listeners.size(); ++l) {
       const auto& resp = sim.listeners[l];
-      channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                        sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
+      const room::Listener& li = room.listeners[l];
+      if (ambix) {  // its W channel is the omni channel
+        ambisonic.push_back(ir::synthesizeAmbisonic(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                    sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l),
+                                                    opts->order, li.forward, li.left, li.up));
+        channels.push_back(ambisonic.back()[0]);
+      } else {
+        channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                          sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
+      }
       std::vector<std::vector<double>> totals;
       for (int b = 0; b < room.bands.size(); ++b) totals.push_back(resp.total(b));
       auto from_hist = ir::metricsFromHistograms(totals, resp.bin_s);
@@ -237,7 +271,6 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       const auto jack = ir::jackknifeMetrics(resp);
       const auto marks_hist = ir::markMetrics(from_hist, jack);
       const auto marks_wav = ir::markMetrics(from_wav, jack, &marks_hist);
-      const room::Listener& li = room.listeners[l];
       for (const std::string& w : ir::uncertaintyWarnings(li.name, room.bands, from_hist, marks_hist)) {
         std::cerr << "diffray: warning: " << core::oneLine(w) << "\n";
         metric_warnings.push_back(w);
@@ -280,6 +313,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                            {"radius_m", li.radius_m},
                            {"orientation", {{"forward", vec(li.forward)}, {"left", vec(li.left)}, {"up", vec(li.up)}}},
                            {"early_direction", {{"window_ms", 10}, {"bands", early}}},
+                           {"ambix_wav", ambix ? nlohmann::ordered_json(ambix_files[l]) : nlohmann::ordered_json()},
                            {"image_sources", resp.arrivals.size()},
                            {"negative_energy_fraction", negativeFraction(resp.traced)},
                            {"batches", resp.batches.size()},
@@ -319,6 +353,8 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"room", room.name},
         {"room_file", opts->room_file},
         {"wav", wav},
+        {"format", opts->format},
+        {"ambisonic_order", ambix ? nlohmann::ordered_json(opts->order) : nlohmann::ordered_json()},
         {"sample_rate_hz", room.output.sample_rate_hz},
         {"length_s", sim.length_s},
         {"frames", frames},
@@ -362,6 +398,18 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       written.write(opts->plot, [&](const std::string& f) { writeDecayPlot(f, names, sim.listeners, plot_flags); });
     }
     written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
+    for (std::size_t l = 0; l < ambisonic.size(); ++l)
+      written.write(ambix_files[l], [&](const std::string& f) {
+        audio::AudioBuffer amb;
+        amb.sample_rate_hz = room.output.sample_rate_hz;
+        amb.channels = static_cast<int>(ambisonic[l].size());
+        amb.samples.assign(static_cast<std::size_t>(frames) * static_cast<std::size_t>(amb.channels), 0.0);
+        for (int c = 0; c < amb.channels; ++c)
+          for (long fr = 0; fr < frames; ++fr)
+            amb.samples[static_cast<std::size_t>(fr) * static_cast<std::size_t>(amb.channels) + static_cast<std::size_t>(c)] =
+                ambisonic[l][static_cast<std::size_t>(c)][static_cast<std::size_t>(fr)];
+        audio::writeWavFloat(f, amb);
+      });
     written.write(side_csv, [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     written.write(side_json, [&](const std::string& f) {

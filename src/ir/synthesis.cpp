@@ -10,6 +10,7 @@
 #include "diffray/core/math.h"
 #include "diffray/core/rng.h"
 #include "diffray/ir/band_filter.h"
+#include "synthesis_plan.h"
 
 namespace diffray::ir {
 
@@ -95,7 +96,8 @@ using BandSpectrum = std::vector<std::complex<double>>;
 /// The traced part, `samples` long: each band part's spectrum on its band's bins (empty if none).
 /// `quiet`: the leading samples combine() silences (tracedStartSample); the gains match what is left.
 std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter& filter, RealFft& fft, double volume_m3,
-                                      double c, std::uint64_t seed, long samples, long quiet) {
+                                      double c, std::uint64_t seed, long samples, long quiet,
+                                      detail::SynthesisPlan* plan) {
   const double fs = filter.sampleRateHz();
   const long n = samples;
   const int bins = static_cast<int>(std::min<double>(r.bins(), std::ceil(static_cast<double>(n) / (fs * r.bin_s))));
@@ -121,6 +123,10 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
   // staircase whose sidebands (kHz apart at 1 ms bins) spill a slowly decaying band into its neighbours
   // (measured: T30 at 8 kHz read 20 % long in the shoebox, where 4 kHz decays twice as slowly).
   const int nb = r.bands.size();
+  if (plan) {
+    plan->diracs = d;
+    plan->bin_start = spans.start;
+  }
   std::vector<int> count(static_cast<size_t>(bins), 0);
   for (int i = 0; i < bins; ++i)
     for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) count[i] += d[s] != 0.0;
@@ -150,6 +156,7 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
         if (xs > 0.0) g[i] *= std::sqrt(es / xs);
       }
     }
+    if (plan) plan->gains.push_back(g);
     std::vector<std::complex<double>> spectrum;
     fft.forward(db, spectrum);
     const BandGains band = filter.gains(k, fft.size());
@@ -251,7 +258,8 @@ std::vector<double> analysedEnergyScales(const std::vector<BandSpectrum>& parts,
 /// or empty), phased within each band so that their energies add: the earliest arrival as it is, the
 /// traced part rotated to be orthogonal to it, every later arrival orthogonal to all before it.
 std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, RealFft& fft,
-                            std::vector<BandSpectrum> traced, long samples, Phasing phasing, long traced_start) {
+                            std::vector<BandSpectrum> traced, long samples, Phasing phasing, long traced_start,
+                            detail::SynthesisPlan* plan) {
   const bool orthogonal = phasing == Phasing::Orthogonal;
   const double fs = filter.sampleRateHz();
   const int m = fft.size();
@@ -288,6 +296,10 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
   std::vector<BandSpectrum> u(static_cast<size_t>(nb));
   std::vector<double> amplitude(static_cast<size_t>(nb)), target(static_cast<size_t>(nb));
   std::vector<std::complex<double>> rotation(static_cast<size_t>(nb));
+  if (plan) {
+    plan->traced_turn.assign(static_cast<size_t>(nb), {1.0, 0.0});
+    plan->arrival_coefficients.assign(r.arrivals.size(), std::vector<std::complex<double>>(static_cast<size_t>(nb)));
+  }
   for (size_t index : order) {
     const Arrival& a = r.arrivals[index];
     if (a.delay_s >= length_s) continue;  // beyond the response: its energy is not in it
@@ -321,6 +333,7 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
     for (int b = 0; b < nb; ++b) {
       if (target[b] == 0.0) continue;
       const std::complex<double> c = rotation[b] * amplitude[b];
+      if (plan) plan->arrival_coefficients[index][static_cast<size_t>(b)] = c;
       for (size_t j = 0; j < u[b].size(); ++j) {
         part[b][j] += c * u[b][j];
         reference[b][j] += c * u[b][j];
@@ -333,11 +346,13 @@ std::vector<double> combine(const EnergyResponse& r, const BandFilter& filter, R
       std::vector<std::complex<double>> turns;
       for (size_t b = 0; b < traced.size(); ++b) turns.push_back(orthogonalRotation(innerProduct(traced[b], part[b])));
       const std::vector<double> scales = analysedEnergyScales(traced, turns, gains, m);
-      for (size_t b = 0; b < traced.size(); ++b)
+      for (size_t b = 0; b < traced.size(); ++b) {
+        if (plan) plan->traced_turn[b] = turns[b] * scales[b];
         for (size_t j = 0; j < traced[b].size(); ++j) {
           traced[b][j] *= turns[b] * scales[b];
           reference[b][j] += traced[b][j];
         }
+      }
       first = false;
     }
   }
@@ -386,15 +401,32 @@ std::vector<double> poissonDiracs(long samples, double sample_rate_hz, double vo
 
 std::vector<double> synthesize(const EnergyResponse& response, double sample_rate_hz, double length_s,
                                double volume_m3, double speed_of_sound_m_s, std::uint64_t seed, Phasing phasing) {
+  return detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing,
+                                   nullptr);
+}
+
+namespace detail {
+
+std::vector<double> synthesizePlanned(const EnergyResponse& response, double sample_rate_hz, double length_s,
+                                      double volume_m3, double speed_of_sound_m_s, std::uint64_t seed,
+                                      Phasing phasing, SynthesisPlan* plan) {
   checkInputs(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s);
   const long n = core::checkedCount("synthesis: samples", length_s * sample_rate_hz, 1u << 30);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(filter.fftLengthFor(n));
   const long quiet = tracedStartSample(response, sample_rate_hz, n);
+  if (plan) {
+    *plan = SynthesisPlan();
+    plan->samples = n;
+    plan->quiet = quiet;
+    plan->fft_size = fft.size();
+  }
   std::vector<BandSpectrum> traced;
   if (!response.traced.empty())
-    traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n, quiet);
-  return combine(response, filter, fft, std::move(traced), n, phasing, quiet);
+    traced = tracedParts(response, filter, fft, volume_m3, speed_of_sound_m_s, seed, n, quiet, plan);
+  return combine(response, filter, fft, std::move(traced), n, phasing, quiet, plan);
 }
+
+}  // namespace detail
 
 }  // namespace diffray::ir

@@ -1,0 +1,38 @@
+#pragma once
+// Ambisonic impulse responses (AmbiX: ACN channel order, SN3D normalisation, spatial/spherical_harmonics.h)
+// synthesized from an EnergyResponse that recorded directions (transport::RoomSimulationOptions::directions).
+//
+// Contract. Channel 0 (W) is the omnidirectional response of ir::synthesize with the same arguments, sample
+// for sample; channel c holds the same events, each weighted by Y_c of its direction in the listener's
+// frame (x forward, y left, z up), so every channel shares W's time structure and, per band, the energy
+// the directions give it (the mean of Y_c² over the sphere is 1/(2n + 1) in a diffuse field).
+//  * Arrivals (direct sound, image sources, UTD paths) carry their exact direction (Arrival::direction):
+//    channel c holds Y_c(d)·(the arrival's pulse in W). An arrival without a direction stays in W alone.
+//  * The traced part: per band, the Diracs W is built from, each with its own direction drawn from a
+//    two-part model of the band's energy vector around its time (Directional Audio Coding, Pulkki, J. Audio
+//    Eng. Soc. 55(6), 2007: a directional part from the energy vector's direction and a diffuse part from
+//    everywhere): with probability r_E the energy vector's direction u, otherwise a direction drawn
+//    uniformly over the sphere, so that the expected energy vector of the Diracs is r_E·u, the traced one.
+//    r_E and u are read from the recorded directions summed over the bins within ±max(2 bins, 10 % of the
+//    time) of the Dirac's bin (few rays reach a listener in one late bin: a sum over one bin would read
+//    r_E near 1 from a handful of rays). Each band's weighted Diracs go through the band filter, the gains
+//    and the turn W's synthesis solved for that band, so W's band energies and phases carry over.
+//  Without recorded directions the traced part is diffuse (r_E = 0). Reproducible from `seed` (its own
+//  stream for the directions). Thread-safe (no shared state; FFTW planning is serialised).
+#include <cstdint>
+#include <vector>
+
+#include "diffray/core/math.h"
+#include "diffray/ir/response.h"
+
+namespace diffray::ir {
+
+/// The (order + 1)² channels of the Ambisonic IR, each length_s·sample_rate_hz samples, for a listener whose
+/// head frame is (forward, left, up) in world coordinates. Throws core::InputError as synthesize() does, and
+/// for an order outside 1…3.
+std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& response, double sample_rate_hz,
+                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
+                                                     std::uint64_t seed, int order, const core::Vec3& forward,
+                                                     const core::Vec3& left, const core::Vec3& up);
+
+}  // namespace diffray::ir
