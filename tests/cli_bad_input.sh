@@ -123,6 +123,10 @@ expect_ir_error "unknown --diffraction" "$good" --diffraction bogus
 expect_ir_error "--diffraction-order 0" "$good" --diffraction wbsdf --diffraction-order 0
 expect_ir_error "--format unknown"      "$good" --format binaural5
 expect_ir_error "--order 4 (Ambisonics to 3)" "$good" --format ambix --order 4
+printf 'not a SOFA file\n' >"$tmp/bad.sofa"
+expect_ir_error "--hrtf: not a SOFA file" "$good" --format binaural --hrtf "$tmp/bad.sofa"
+expect_ir_error "--hrtf: missing file"  "$good" --format binaural --hrtf "$tmp/none.sofa"
+expect_ir_error "--hrtf without binaural" "$good" --hrtf "$tmp/bad.sofa"
 expect_ir_error "listener look_at itself" "{$mat, $box, $src, \"listeners\": [{\"position\": [1,1,1], \"look_at\": [1,1,1]}]}"
 printf '%s\n' "$good" >"$tmp/room.json"
 expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000

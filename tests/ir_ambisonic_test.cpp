@@ -1,4 +1,4 @@
-// Ambisonic IR synthesis (ir/ambisonic_synthesis.h). Oracles: the omnidirectional synthesis (W must be it,
+// Ambisonic IR synthesis (ir/spatial_synthesis.h). Oracles: the omnidirectional synthesis (W must be it,
 // sample for sample); the closed-form SN3D harmonics of orders 1 and 2 written out here (a plane wave's
 // channel c is Y_c(d)·W); the sphere averages of Y² for a diffuse field (1/(2n + 1)), with a tolerance
 // from the variance of the Dirac directions and of the band's finite bandwidth-time product.
@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "diffray/core/error.h"
-#include "diffray/ir/ambisonic_synthesis.h"
+#include "diffray/ir/spatial_synthesis.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/ir/synthesis.h"
+#include "response_fixtures.h"
 
 namespace diffray::ir {
 namespace {
@@ -82,14 +83,7 @@ TEST(IrAmbisonic, PlaneWaveGivesEachChannelItsHarmonicTimesW) {
 
 TEST(IrAmbisonic, ListenerFrameTurnsTheField) {
   // An arrival from world +y heard by a listener facing +y (yaw 90°): straight ahead, X = W, Y = Z = 0.
-  EnergyResponse r;
-  r.bands = core::Bands::octave();
-  r.bin_s = 0.001;
-  Arrival a;
-  a.delay_s = 0.01;
-  a.energy = core::bandFill(1.0);
-  a.direction = Vec3(0, 1, 0);
-  r.arrivals.push_back(a);
+  const EnergyResponse r = test::singleArrival(0.01, Vec3(0, 1, 0));
   const auto amb = synthesizeAmbisonic(r, kFs, 0.2, kVolume, kC, 1, 1, Vec3(0, 1, 0), Vec3(-1, 0, 0), kUp);
   double w = 0.0;
   for (std::size_t s = 0; s < amb[0].size(); ++s) {

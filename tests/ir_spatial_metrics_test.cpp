@@ -42,6 +42,34 @@ TEST(IrSpatialMetrics, LateralFractionOfOneReflectionMatchesItsClosedForm) {
   }
 }
 
+TEST(IrSpatialMetrics, LateLateralLevelOfAToneBurstMatchesItsEnergy) {
+  // Y holds, 200 ms after the onset (well past 80 ms), a 1 kHz tone burst of amplitude A and 0.4 s with
+  // raised-cosine edges of 20 ms: its energy Σy² = A²/2·(0.38 s)·fs within the 1 kHz octave (its spectrum is
+  // ~10 Hz wide), so L_J(1 kHz) = 10·lg(Σy² / E_10). The other octaves hold none of it: no L_J there
+  // (−∞ dB is not a figure) or one far below. Tolerance 0.05 dB: the burst's edges and its sidelobes outside
+  // the octave, both below 1e-3 of its energy.
+  const Bands bands = Bands::octave(250.0, 4000.0);
+  std::vector<double> w(96000, 0.0), y(96000, 0.0);
+  const std::size_t t0 = 4800;
+  w[t0] = 1.0;
+  const double amp = 0.1, edge = 0.02, len = 0.4;
+  double energy = 0.0;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(len * kFs); ++i) {
+    const double t = static_cast<double>(i) / kFs;
+    double g = 1.0;
+    if (t < edge) g = 0.5 * (1.0 - std::cos(kPi * t / edge));
+    if (t > len - edge) g = 0.5 * (1.0 - std::cos(kPi * (len - t) / edge));
+    y[t0 + 9600 + i] = amp * g * std::sin(2.0 * kPi * 1000.0 * t);
+    energy += y[t0 + 9600 + i] * y[t0 + 9600 + i];
+  }
+  const double ref = 1e-4;  // a 1 W source's free field at 10 m: 1/100 m² per band, here scaled
+  const auto m = ir::lateralFractions(w, y, kFs, bands, ref);
+  EXPECT_NEAR(m[2].lj_db, 10.0 * std::log10(energy / ref), 0.05);
+  EXPECT_LT(m[0].lj_db, m[2].lj_db - 30.0);
+  // Without a reference there is no L_J.
+  EXPECT_TRUE(std::isnan(ir::lateralFractions(w, y, kFs, bands)[2].lj_db));
+}
+
 TEST(IrSpatialMetrics, NoLateralEnergyWithoutLateralSound) {
   // A reflection from straight behind (φ = 180°) reaches Y with gain sin 180° = 0.
   const Bands bands = Bands::octave(250.0, 4000.0);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every kind of WAV diffray writes (signal: sweep, clicks, speech; ir, omni and AmbiX; auralize, plain and --normalize; door),
+# Every kind of WAV diffray writes (signal: sweep, clicks, speech; ir, omni, AmbiX and binaural; auralize, plain and --normalize; door),
 # read by sox (soxi) and by libsndfile (diffray metrics): both must see the same channels and frames, sox
 # must print no warning, and libsndfile's reader must say nothing about the file.
 # The one exception, for files of more than two channels only: sox 14.4.2 (Debian 12) prints "wave header
@@ -61,6 +61,8 @@ check three.wav 3
 run ir shoebox.json --rays 2000 -o amb.wav --format ambix --order 2  # an AmbiX file per listener
 check amb.R1.ambix.wav 9
 check amb.R2.ambix.wav 9
+run ir shoebox.json --rays 2000 -o bin.wav --format binaural  # a two-ear file per listener (Debian's KEMAR set)
+check bin.R1.binaural.wav 2
 run auralize --ir shoebox.ir.wav --in clicks.wav -o wet.wav
 check wet.wav 2
 run auralize --ir three.wav --in clicks.wav -o wet3.wav --normalize

@@ -7,6 +7,7 @@ DIFFRAY_PACKAGES=(build-essential cmake pkg-config libembree-dev libtbb-dev libf
 DIFFRAY_PACKAGES+=(libsamplerate0-dev espeak-ng)  # resampling in auralize, speech in `diffray signal`
 DIFFRAY_PACKAGES+=(libpng-dev)  # PNG output of rendered images
 DIFFRAY_PACKAGES+=(libopenexr-dev)  # OpenEXR (float) output of rendered images
+DIFFRAY_PACKAGES+=(libmysofa-dev)  # SOFA HRTFs for binaural IRs; libmysofa1 ships the MIT KEMAR set
 DIFFRAY_PACKAGES+=(sox)  # tests/wav_readers.sh: sox reads every WAV diffray writes
 DIFFRAY_PACKAGES+=(python3-dev python3-pybind11 python3-numpy python3-pytest)  # the Python module (src/python)
 # Only tools/sanitize adds these: clang with its sanitizer runtimes (AddressSanitizer, UBSan).

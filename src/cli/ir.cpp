@@ -12,6 +12,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
@@ -20,13 +21,16 @@
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
-#include "diffray/ir/ambisonic_synthesis.h"
+#include "diffray/ir/spatial_metrics.h"
+#include "diffray/ir/spatial_synthesis.h"
+#include "diffray/spatial/hrtf.h"
 #include "diffray/ir/direction.h"
 #include "diffray/ir/metrics.h"
 #include "diffray/ir/strength.h"
 #include "diffray/ir/synthesis.h"
 #include "diffray/ir/uncertainty.h"
 #include "diffray/room/checks.h"
+#include "diffray/room/json_fields.h"
 #include "diffray/room/reverberation.h"
 #include "diffray/room/scene_file.h"
 #include "diffray/transport/room_simulation.h"
@@ -47,15 +51,16 @@ struct IrOptions {
   bool portal = true;
   std::string format = "omni";
   int order = 1;
+  std::string hrtf;
 };
 
-// The Ambisonic IR file of one listener: OUT's stem, the listener's name (characters other than letters,
-// digits, '.', '-' and '_' become '_') and ".ambix.wav".
-std::string ambixFile(const std::string& wav, const std::string& listener) {
+// The spatial IR file of one listener: OUT's stem, the listener's name (characters other than letters,
+// digits, '.', '-' and '_' become '_') and ".FORMAT.wav".
+std::string spatialFile(const std::string& wav, const std::string& listener, const std::string& format) {
   std::string name = listener;
   for (char& ch : name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == '_')) ch = '_';
-  return withExtension(wav, "." + name + ".ambix.wav");
+  return withExtension(wav, "." + name + "." + format + ".wav");
 }
 
 // Σ negative / Σ |energy| over a listener's traced bins: how signed the WBSDF result is (negative energy is
@@ -177,10 +182,15 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
   addContinuationOption(sub, opts->portal);
   sub->add_option("--format", opts->format,
                   "omni (default): one channel per listener; ambix: also one AmbiX file per listener, "
-                  "OUT.LISTENER.ambix.wav ((order+1)^2 channels, ACN order, SN3D; W is the omni channel)")
-      ->check(CLI::IsMember({"omni", "ambix"}));
+                  "OUT.LISTENER.ambix.wav ((order+1)^2 channels, ACN order, SN3D; W is the omni channel); "
+                  "binaural: also one two-channel file per listener, OUT.LISTENER.binaural.wav (left, right)")
+      ->check(CLI::IsMember({"omni", "ambix", "binaural"}));
   sub->add_option("--order", opts->order, "Ambisonic order of --format ambix: 1, 2 or 3 (default 1)")
       ->transform(wholeNumberValidator(1, 3));
+  sub->add_option("--hrtf", opts->hrtf,
+                  "SOFA HRTF set of --format binaural (default: Debian's MIT KEMAR set, " +
+                      std::string(spatial::Hrtf::defaultPath()) + ")")
+      ->check(inputPathValidator());
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -204,13 +214,25 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                 << side_json << " and the histograms " << side_csv << "\n";
     }
     // No output may replace a file the room was read from (-o materials.wav: the material library).
-    const bool ambix = opts->format == "ambix";
-    std::vector<std::string> ambix_files;
-    if (ambix)
-      for (const room::Listener& li : room.listeners) ambix_files.push_back(ambixFile(wav, li.name));
+    const bool ambix = opts->format == "ambix", binaural = opts->format == "binaural";
+    if (!opts->hrtf.empty() && !binaural) throw core::InputError("--hrtf", "is for --format binaural");
+    std::vector<std::string> spatial_files;
+    if (ambix || binaural)
+      for (const room::Listener& li : room.listeners) spatial_files.push_back(spatialFile(wav, li.name, opts->format));
     std::vector<std::string> outputs{wav, side_json, side_csv, opts->plot};
-    outputs.insert(outputs.end(), ambix_files.begin(), ambix_files.end());
+    outputs.insert(outputs.end(), spatial_files.begin(), spatial_files.end());
     checkOutputFiles(outputs, room.input_files);
+    // The HRTF set before any work: a bad file is one line and nothing written.
+    std::optional<spatial::Hrtf> hrtf;
+    if (binaural) {
+      hrtf = spatial::Hrtf::load(opts->hrtf, room.output.sample_rate_hz);
+      std::cerr << "diffray: info: HRTF " << hrtf->path() << " (" << hrtf->directions() << " directions"
+                << (hrtf->fileRateHz() != hrtf->sampleRateHz()
+                        ? ", resampled from " + room::formatNumber(hrtf->fileRateHz()) + " to " +
+                              room::formatNumber(hrtf->sampleRateHz()) + " Hz)"
+                        : ")")
+                << "\n";
+    }
     checkPlotOption("--plot", opts->plot);
     room::checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
@@ -241,7 +263,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     buffer.channels = static_cast<int>(room.listeners.size());
     nlohmann::ordered_json listeners = nlohmann::ordered_json::array();
     std::vector<std::vector<double>> channels;
-    std::vector<std::vector<std::vector<double>>> ambisonic;  // [listener][ACN channel], with --format ambix
+    std::vector<std::vector<std::vector<double>>> spatial_irs;  // [listener][channel]: AmbiX (ACN) or left, right
     std::string table;
     std::vector<std::string> metric_warnings;  // noisy or negative bands, one per listener and band
     std::vector<std::vector<std::string>> plot_flags;  // [listener][band]: the histogram's flags
@@ -252,11 +274,15 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       const auto& resp = sim.listeners[l];
       const room::Listener& li = room.listeners[l];
       if (ambix) {  // its W channel is the omni channel
-        ambisonic.push_back(ir::synthesizeAmbisonic(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                                    sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l),
-                                                    opts->order, li.forward, li.left, li.up));
-        channels.push_back(ambisonic.back()[0]);
+        spatial_irs.push_back(ir::synthesizeAmbisonic(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                      sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l),
+                                                      opts->order, li.forward, li.left, li.up));
+        channels.push_back(spatial_irs.back()[0]);
       } else {
+        if (binaural)
+          spatial_irs.push_back(ir::synthesizeBinaural(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                       sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf,
+                                                       li.forward, li.left, li.up));
         channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
                                           sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
       }
@@ -307,13 +333,26 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         else std::snprintf(cell, sizeof cell, " %s -", room.bands.label(b).c_str());
         dir_line += cell;
       }
+      // ISO 3382-1 A.3 figures of the spatial IR: J_LF, J_LFC and L_J (re the sources' free field at 10 m)
+      // from W and Y; IACC_E and IACC_L from the ears.
+      nlohmann::ordered_json spatial_json;
+      std::string spatial_table;
+      if (!spatial_irs.empty()) {
+        const auto& s = spatial_irs.back();
+        const auto m = ambix ? ir::lateralFractions(s[0], s[1], room.output.sample_rate_hz, room.bands, total_power_w / 100.0)
+                             : ir::interauralCrossCorrelation(s[0], s[1], room.output.sample_rate_hz, room.bands);
+        spatial_json = ir::spatialJson(room.bands, m, ambix);
+        spatial_table = "listener " + li.name + " (" + opts->format + ", ISO 3382-1 A.3):\n" +
+                        ir::spatialTable(room.bands, m, ambix);
+      }
       const auto vec = [](const core::Vec3& v) { return nlohmann::ordered_json{v.x(), v.y(), v.z()}; };
       listeners.push_back({{"name", li.name},
                            {"position_m", {li.position_m.x(), li.position_m.y(), li.position_m.z()}},
                            {"radius_m", li.radius_m},
                            {"orientation", {{"forward", vec(li.forward)}, {"left", vec(li.left)}, {"up", vec(li.up)}}},
                            {"early_direction", {{"window_ms", 10}, {"bands", early}}},
-                           {"ambix_wav", ambix ? nlohmann::ordered_json(ambix_files[l]) : nlohmann::ordered_json()},
+                           {"spatial_wav", spatial_files.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(spatial_files[l])},
+                           {"spatial", spatial_json},
                            {"image_sources", resp.arrivals.size()},
                            {"negative_energy_fraction", negativeFraction(resp.traced)},
                            {"batches", resp.batches.size()},
@@ -322,7 +361,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       table += "listener " + li.name + " (from the energy histogram):\n" +
                ir::metricsTable(room.bands, from_hist, &marks_hist) + g_line + "\n" + dir_line + "\n";
       table += "listener " + li.name + " (from the synthesized WAV; standard errors and flags from the histogram):\n" +
-               ir::metricsTable(room.bands, from_wav, &marks_wav);
+               ir::metricsTable(room.bands, from_wav, &marks_wav) + spatial_table;
     }
     Statistics stats = statisticsAgainstTraced(room, traced_t30);
     table += stats.table;
@@ -355,6 +394,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         {"wav", wav},
         {"format", opts->format},
         {"ambisonic_order", ambix ? nlohmann::ordered_json(opts->order) : nlohmann::ordered_json()},
+        {"hrtf", hrtf ? nlohmann::ordered_json(hrtf->path()) : nlohmann::ordered_json()},
         {"sample_rate_hz", room.output.sample_rate_hz},
         {"length_s", sim.length_s},
         {"frames", frames},
@@ -398,17 +438,17 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       written.write(opts->plot, [&](const std::string& f) { writeDecayPlot(f, names, sim.listeners, plot_flags); });
     }
     written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
-    for (std::size_t l = 0; l < ambisonic.size(); ++l)
-      written.write(ambix_files[l], [&](const std::string& f) {
-        audio::AudioBuffer amb;
-        amb.sample_rate_hz = room.output.sample_rate_hz;
-        amb.channels = static_cast<int>(ambisonic[l].size());
-        amb.samples.assign(static_cast<std::size_t>(frames) * static_cast<std::size_t>(amb.channels), 0.0);
-        for (int c = 0; c < amb.channels; ++c)
+    for (std::size_t l = 0; l < spatial_irs.size(); ++l)
+      written.write(spatial_files[l], [&](const std::string& f) {
+        audio::AudioBuffer out;
+        out.sample_rate_hz = room.output.sample_rate_hz;
+        out.channels = static_cast<int>(spatial_irs[l].size());
+        out.samples.assign(static_cast<std::size_t>(frames) * static_cast<std::size_t>(out.channels), 0.0);
+        for (int c = 0; c < out.channels; ++c)
           for (long fr = 0; fr < frames; ++fr)
-            amb.samples[static_cast<std::size_t>(fr) * static_cast<std::size_t>(amb.channels) + static_cast<std::size_t>(c)] =
-                ambisonic[l][static_cast<std::size_t>(c)][static_cast<std::size_t>(fr)];
-        audio::writeWavFloat(f, amb);
+            out.samples[static_cast<std::size_t>(fr) * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] =
+                spatial_irs[l][static_cast<std::size_t>(c)][static_cast<std::size_t>(fr)];
+        audio::writeWavFloat(f, out);
       });
     written.write(side_csv, [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

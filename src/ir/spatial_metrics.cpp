@@ -76,7 +76,7 @@ double iacc(const std::vector<double>& l, const std::vector<double>& r, long fro
 }  // namespace
 
 std::vector<SpatialBandMetrics> lateralFractions(const std::vector<double>& w, const std::vector<double>& y,
-                                                 double sample_rate_hz, const core::Bands& bands) {
+                                                 double sample_rate_hz, const core::Bands& bands, double reference_10m) {
   const BandPair p = splitPair(w, y, sample_rate_hz, bands, false, "AmbiX response");
   std::vector<SpatialBandMetrics> out(static_cast<std::size_t>(bands.size()));
   const long n5 = p.onset + samples(0.005, p.fs), n80 = p.onset + samples(0.080, p.fs);
@@ -89,6 +89,11 @@ std::vector<SpatialBandMetrics> lateralFractions(const std::vector<double>& w, c
     for (long i = n5; i < n80; ++i) {
       num += py[static_cast<std::size_t>(i)] * py[static_cast<std::size_t>(i)];
       numc += std::abs(py[static_cast<std::size_t>(i)] * pw[static_cast<std::size_t>(i)]);
+    }
+    if (reference_10m > 0.0) {
+      double late = 0.0;
+      for (std::size_t i = static_cast<std::size_t>(n80); i < py.size(); ++i) late += py[i] * py[i];
+      if (late > 0.0) out[static_cast<std::size_t>(b)].lj_db = 10.0 * std::log10(late / reference_10m);
     }
     if (!(den > 0.0)) continue;
     out[static_cast<std::size_t>(b)].jlf = num / den;
@@ -136,11 +141,15 @@ nlohmann::ordered_json spatialJson(const core::Bands& bands, const std::vector<S
     const SpatialBandMetrics& m = metrics[static_cast<std::size_t>(b)];
     per_band[bands.label(b)] = ambix ? nlohmann::ordered_json{{"jlf", value(m.jlf)}, {"jlfc", value(m.jlfc)}}
                                      : nlohmann::ordered_json{{"iacc_e", value(m.iacc_e)}, {"iacc_l", value(m.iacc_l)}};
+    if (ambix && std::isfinite(m.lj_db)) per_band[bands.label(b)]["lj_db"] = m.lj_db;
   }
   j["bands"] = per_band;
   if (ambix) {
     j["jlf_125_1000"] = value(bandAverage(bands, metrics, &SpatialBandMetrics::jlf, 125.0, 1000.0));
     j["jlfc_125_1000"] = value(bandAverage(bands, metrics, &SpatialBandMetrics::jlfc, 125.0, 1000.0));
+    // L_J's single figure: the mean over the 125 Hz – 1 kHz octaves (ISO 3382-1 Table A.1).
+    const double lj = bandAverage(bands, metrics, &SpatialBandMetrics::lj_db, 125.0, 1000.0);
+    if (std::isfinite(lj)) j["lj_db_125_1000"] = lj;
   } else {
     j["iacc_e3"] = value(bandAverage(bands, metrics, &SpatialBandMetrics::iacc_e, 500.0, 2000.0));
     j["iacc_l3"] = value(bandAverage(bands, metrics, &SpatialBandMetrics::iacc_l, 500.0, 2000.0));
@@ -151,7 +160,10 @@ nlohmann::ordered_json spatialJson(const core::Bands& bands, const std::vector<S
 std::string spatialTable(const core::Bands& bands, const std::vector<SpatialBandMetrics>& metrics, bool ambix) {
   std::string out;
   char line[160];
-  std::snprintf(line, sizeof line, "%7s %8s %8s\n", "band Hz", ambix ? "J_LF" : "IACC_E", ambix ? "J_LFC" : "IACC_L");
+  bool lj = false;
+  for (const SpatialBandMetrics& m : metrics) lj = lj || std::isfinite(m.lj_db);
+  std::snprintf(line, sizeof line, "%7s %8s %8s%s\n", "band Hz", ambix ? "J_LF" : "IACC_E", ambix ? "J_LFC" : "IACC_L",
+                ambix && lj ? "   L_J dB" : "");
   out += line;
   const auto cell = [](double v) {
     char c[32];
@@ -162,11 +174,13 @@ std::string spatialTable(const core::Bands& bands, const std::vector<SpatialBand
   for (int b = 0; b < bands.size(); ++b) {
     const SpatialBandMetrics& m = metrics[static_cast<std::size_t>(b)];
     out += std::string(7 - std::min<std::size_t>(7, bands.label(b).size()), ' ') + bands.label(b) + " " +
-           cell(ambix ? m.jlf : m.iacc_e) + " " + cell(ambix ? m.jlfc : m.iacc_l) + "\n";
+           cell(ambix ? m.jlf : m.iacc_e) + " " + cell(ambix ? m.jlfc : m.iacc_l) + (ambix && lj ? " " + cell(m.lj_db) : "") +
+           "\n";
   }
   if (ambix)
     out += "J_LF (125 Hz - 1 kHz): " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::jlf, 125.0, 1000.0)) +
-           "   J_LFC: " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::jlfc, 125.0, 1000.0)) + "\n";
+           "   J_LFC: " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::jlfc, 125.0, 1000.0)) +
+           (lj ? "   L_J dB: " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::lj_db, 125.0, 1000.0)) : "") + "\n";
   else
     out += "IACC_E3 (500 Hz - 2 kHz): " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::iacc_e, 500.0, 2000.0)) +
            "   IACC_L3: " + cell(bandAverage(bands, metrics, &SpatialBandMetrics::iacc_l, 500.0, 2000.0)) + "\n";

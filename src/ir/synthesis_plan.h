@@ -1,6 +1,6 @@
 #pragma once
 // Inside the IR synthesis (synthesis.cpp), for the syntheses that reuse what it drew and solved for the
-// omnidirectional response (ambisonic_synthesis.cpp): the Dirac sequence, each band's final gain per bin,
+// omnidirectional response (spatial_synthesis.cpp): the Dirac sequence, each band's final gain per bin,
 // the traced part's turn per band and each arrival's complex coefficient per band. A channel built from the
 // same plan with every direction weight 1 is the omnidirectional response itself. Plain data.
 #include <complex>

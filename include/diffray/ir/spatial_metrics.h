@@ -8,7 +8,10 @@
 //   (+x) toward the source. Y is then the lateral figure-of-eight whose gain at ±90° equals W's, the pair
 //   ISO 3382-1 A.3.2 asks for:
 //     J_LF  = ∫_{5 ms}^{80 ms} p_Y² dt / ∫_{0}^{80 ms} p_W² dt,
-//     J_LFC = ∫_{5 ms}^{80 ms} |p_Y·p_W| dt / ∫_{0}^{80 ms} p_W² dt.
+//     J_LFC = ∫_{5 ms}^{80 ms} |p_Y·p_W| dt / ∫_{0}^{80 ms} p_W² dt,
+//   and, when the free-field energy of the same source at 10 m is known (a simulation: P/(100 m²) per band
+//   for a source of power P), the late lateral sound level of A.3.3,
+//     L_J = 10·lg(∫_{80 ms}^{∞} p_Y² dt / ∫_0^∞ p_10² dt) dB.
 // - Binaural (left, right; ISO 3382-1 A.3.5):
 //     IACF(τ) = ∫_{t1}^{t2} p_L(t)·p_R(t + τ) dt / √(∫_{t1}^{t2} p_L² dt · ∫_{t1}^{t2} p_R² dt),
 //     IACC = max |IACF(τ)| over |τ| ≤ 1 ms;   IACC_E: t1 = 0, t2 = 80 ms;   IACC_L: t1 = 80 ms,
@@ -35,13 +38,17 @@ namespace diffray::ir {
 struct SpatialBandMetrics {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   double jlf = kNaN, jlfc = kNaN;       ///< fractions (AmbiX)
+  double lj_db = kNaN;                  ///< late lateral sound level, dB (AmbiX with a known reference)
   double iacc_e = kNaN, iacc_l = kNaN;  ///< 0 … 1 (binaural)
 };
 
 /// J_LF and J_LFC per band from the W and Y channels of an AmbiX response. Throws core::InputError for
 /// signals of different lengths, non-finite samples or a silent W.
+/// With `reference_10m` > 0 (the energy per band of the source's free-field response at 10 m, in the
+/// signals' units: Σp²), L_J too.
 std::vector<SpatialBandMetrics> lateralFractions(const std::vector<double>& w, const std::vector<double>& y,
-                                                 double sample_rate_hz, const core::Bands& bands);
+                                                 double sample_rate_hz, const core::Bands& bands,
+                                                 double reference_10m = 0.0);
 
 /// IACC_E and IACC_L per band from a binaural response. Throws core::InputError as lateralFractions.
 std::vector<SpatialBandMetrics> interauralCrossCorrelation(const std::vector<double>& left,

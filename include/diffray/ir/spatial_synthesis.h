@@ -1,4 +1,7 @@
 #pragma once
+// Ambisonic and binaural impulse responses synthesized from an EnergyResponse that recorded directions
+// (transport::RoomSimulationOptions::directions), sharing W's (the omnidirectional response's) events.
+//
 // Ambisonic impulse responses (AmbiX: ACN channel order, SN3D normalisation, spatial/spherical_harmonics.h)
 // synthesized from an EnergyResponse that recorded directions (transport::RoomSimulationOptions::directions).
 //
@@ -25,6 +28,10 @@
 #include "diffray/core/math.h"
 #include "diffray/ir/response.h"
 
+namespace diffray::spatial {
+class Hrtf;
+}
+
 namespace diffray::ir {
 
 /// The (order + 1)² channels of the Ambisonic IR, each length_s·sample_rate_hz samples, for a listener whose
@@ -34,5 +41,21 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
                                                      double length_s, double volume_m3, double speed_of_sound_m_s,
                                                      std::uint64_t seed, int order, const core::Vec3& forward,
                                                      const core::Vec3& left, const core::Vec3& up);
+
+/// The binaural impulse response (left, right), each length_s·sample_rate_hz samples, through `hrtf`
+/// (prepared at sample_rate_hz) for a listener whose head frame is (forward, left, up). The same events as
+/// W, each through the HRIR of the measured direction nearest its own: arrivals at the sample nearest their
+/// delay with their band coefficients of W (an arrival without a direction is heard from straight ahead);
+/// the traced part's Diracs with the directions and amplitudes of the Ambisonic synthesis (above), each
+/// band's Diracs convolved with their HRIRs before the band filter: every reflection of the late part
+/// rendered from its own direction, as the spatial decomposition method renders measured responses (Tervo,
+/// Pätynen, Kuusinen & Lokki, J. Audio Eng. Soc. 61(1/2), 2013). The HRIRs' diffuse-field normalisation
+/// (spatial/hrtf.h) keeps each ear's energy equal to W's on average in a diffuse field. Throws
+/// core::InputError as synthesize() does, and for an HRTF set prepared at another rate.
+std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& response, double sample_rate_hz,
+                                                    double length_s, double volume_m3, double speed_of_sound_m_s,
+                                                    std::uint64_t seed, const spatial::Hrtf& hrtf,
+                                                    const core::Vec3& forward, const core::Vec3& left,
+                                                    const core::Vec3& up);
 
 }  // namespace diffray::ir

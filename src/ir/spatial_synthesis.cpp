@@ -1,0 +1,318 @@
+#include "diffray/ir/spatial_synthesis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+
+#include <tbb/parallel_for.h>
+
+#include "diffray/core/error.h"
+#include "diffray/core/rng.h"
+#include "diffray/ir/band_filter.h"
+#include "diffray/spatial/hrtf.h"
+#include "diffray/spatial/spherical_harmonics.h"
+#include "synthesis_plan.h"
+
+namespace diffray::ir {
+
+namespace {
+
+constexpr std::uint64_t kStreamDirections = 2;  // synthesis.cpp uses streams 0 and 1 of the seed
+// The window of W's energy match, in cycles of the band's bandwidth (synthesis.cpp).
+constexpr double kResolutionCycles = 2.0;
+
+/// Per bin of one band: the energy vector's unit direction and r_E, from the recorded directions summed
+/// over ±max(2, 10 % of the bin index) bins (prefix sums).
+struct BandDirections {
+  std::vector<core::Vec3> u;
+  std::vector<double> r;
+};
+
+BandDirections bandDirections(const EnergyResponse& response, int band, int bins) {
+  BandDirections out;
+  out.u.assign(static_cast<std::size_t>(bins), core::Vec3(0, 0, 0));
+  out.r.assign(static_cast<std::size_t>(bins), 0.0);
+  if (static_cast<int>(response.directions.size()) <= band) return out;
+  const auto& e = response.traced[static_cast<std::size_t>(band)];
+  const auto& v = response.directions[static_cast<std::size_t>(band)];
+  const int n = std::min<int>(bins, static_cast<int>(std::min(e.size(), v.size())));
+  std::vector<double> pe(static_cast<std::size_t>(n) + 1, 0.0);
+  std::vector<core::Vec3> pv(static_cast<std::size_t>(n) + 1, core::Vec3(0, 0, 0));
+  for (int i = 0; i < n; ++i) {
+    pe[static_cast<std::size_t>(i) + 1] = pe[static_cast<std::size_t>(i)] + e[static_cast<std::size_t>(i)];
+    pv[static_cast<std::size_t>(i) + 1] = pv[static_cast<std::size_t>(i)] + v[static_cast<std::size_t>(i)];
+  }
+  for (int i = 0; i < n; ++i) {
+    const int h = std::max(2, static_cast<int>(0.1 * i));
+    const int lo = std::max(0, i - h), hi = std::min(n, i + h + 1);
+    const double energy = pe[static_cast<std::size_t>(hi)] - pe[static_cast<std::size_t>(lo)];
+    const core::Vec3 vec = pv[static_cast<std::size_t>(hi)] - pv[static_cast<std::size_t>(lo)];
+    const double len = vec.norm();
+    if (!(energy > 0.0) || !(len > 0.0)) continue;
+    out.u[static_cast<std::size_t>(i)] = vec / len;
+    out.r[static_cast<std::size_t>(i)] = std::min(1.0, len / energy);
+  }
+  return out;
+}
+
+core::Vec3 uniformDirection(core::Rng& rng) {
+  const double z = 1.0 - 2.0 * rng.uniform(), phi = core::kTwoPi * rng.uniform();
+  const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return {s * std::cos(phi), s * std::sin(phi), z};
+}
+
+/// One band of the traced part as the spatial syntheses render it: each of W's Diracs (its sample) with a
+/// direction in the listener's frame and an amplitude.
+struct BandDiracs {
+  std::vector<long> at;
+  std::vector<core::Vec3> dir;
+  std::vector<double> amp;
+};
+
+/// Writes the weighted sequences (the response's length, zero elsewhere) of every output for one band.
+using RenderBand = std::function<void(const BandDiracs&, std::vector<std::vector<double>>&)>;
+
+/// The traced part of `outputs` signals, each silent before plan.quiet like W's: per band (in parallel, each
+/// its own FFT; summed in band order, so the same samples for any thread count), W's Diracs with their
+/// directions and amplitudes (below), rendered by `render` into one sequence per output, each made into a
+/// band part as synthesis.cpp makes W's (filtered, back to the response's length, its spectrum on the band's
+/// bins) and turned as W's traced part was.
+//
+// Directions: with probability r_E the band's energy vector's direction u around the Dirac's time, otherwise
+// the Dirac's diffuse direction; one uniform and one diffuse direction per Dirac, shared by the bands, so
+// that where the bands' fields agree a Dirac keeps one direction across them and its band parts stay
+// coherent in the crossovers as in W.
+// Amplitudes: W's gains were solved so that W's band part holds the histogram's energy over each window, its
+// chance interference between overlapping Diracs included (synthesis.cpp): they undo that interference, and
+// take a heavy tail doing so (where the interference happened to cancel, a few Diracs get large gains). An
+// output's Diracs interfere otherwise. The directional Diracs (a share r, all from u) keep W's gains,
+// rescaled per window so that on average they hold the share r of W's energy: a share r of W's cross terms
+// remains over them, r·diag + r²·(W − diag) at W's gains (diag: the Diracs' energies without cross terms),
+// hence the factor √(W/(diag + r·(W − diag))), 1 when r = 1 (an output is then W seen from u). The diffuse
+// Diracs (independent directions: no cross terms on average) take one gain per window, √(W/Σ d²·unit), so
+// that they hold W's energy on average without W's tail.
+std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, const detail::SynthesisPlan& plan,
+                                               const std::vector<BandGains>& gains, std::uint64_t seed,
+                                               const std::function<core::Vec3(const core::Vec3&)>& local,
+                                               std::size_t outputs, const RenderBand& render) {
+  const std::size_t n = static_cast<std::size_t>(plan.samples);
+  std::vector<std::vector<double>> out(outputs, std::vector<double>(n, 0.0));
+  if (plan.gains.empty()) return out;
+  std::vector<long> at;
+  std::vector<std::size_t> bin_of;
+  const std::size_t bins = plan.bin_start.size() - 1;
+  for (std::size_t i = 0; i < bins; ++i)
+    for (long s = plan.bin_start[i]; s < plan.bin_start[i + 1]; ++s)
+      if (plan.diracs[static_cast<std::size_t>(s)] != 0.0) at.push_back(s), bin_of.push_back(i);
+  core::Rng rng(seed, kStreamDirections);
+  std::vector<double> pick(at.size());
+  std::vector<core::Vec3> diffuse(at.size());
+  for (std::size_t q = 0; q < at.size(); ++q) pick[q] = rng.uniform(), diffuse[q] = uniformDirection(rng);
+  const std::size_t nbands = std::min(static_cast<std::size_t>(response.bands.size()), plan.gains.size());
+  std::vector<std::vector<std::vector<std::complex<double>>>> parts(nbands);  // [band][output][band bin]
+  tbb::parallel_for(std::size_t{0}, nbands, [&](std::size_t band) {
+    const BandGains& bg = gains[band];
+    RealFft fft(plan.fft_size);
+    const BandDirections dirs = bandDirections(response, static_cast<int>(band), static_cast<int>(bins));
+    const std::vector<double>& g = plan.gains[band];
+    const double bandwidth_hz = response.bands.upperHz(static_cast<int>(band)) - response.bands.lowerHz(static_cast<int>(band));
+    const auto half = static_cast<std::size_t>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * response.bin_s)));
+    std::vector<double> weighted(n, 0.0), w_energy(bins), diag(bins, 0.0), count(bins, 0.0);
+    std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<std::size_t>(fft.bins()));
+    const auto bandPart = [&](const std::vector<double>& x) {
+      fft.forward(x, spectrum);
+      std::fill(band_spectrum.begin(), band_spectrum.end(), std::complex<double>(0.0, 0.0));
+      for (std::size_t j = 0; j < bg.w.size(); ++j)
+        band_spectrum[static_cast<std::size_t>(bg.first) + j] = bg.w[j] * spectrum[static_cast<std::size_t>(bg.first) + j];
+      return fft.inverse(band_spectrum, plan.samples);
+    };
+    // W's band part and its energy per bin.
+    for (std::size_t q = 0; q < at.size(); ++q)
+      weighted[static_cast<std::size_t>(at[q])] = g[bin_of[q]] * plan.diracs[static_cast<std::size_t>(at[q])];
+    const std::vector<double> w_part = bandPart(weighted);
+    for (std::size_t i = 0; i < bins; ++i) {
+      double sum = 0.0;
+      for (long s = std::max(plan.bin_start[i], plan.quiet); s < plan.bin_start[i + 1]; ++s)
+        sum += w_part[static_cast<std::size_t>(s)] * w_part[static_cast<std::size_t>(s)];
+      w_energy[i] = sum;
+    }
+    double unit = 0.0;  // the energy of a unit Dirac through the band filter, (2/m)·Σ W_b²
+    for (double w : bg.w) unit += w * w;
+    unit *= 2.0 / fft.size();
+    for (std::size_t q = 0; q < at.size(); ++q)
+      if (at[q] >= plan.quiet) {
+        const double d = plan.diracs[static_cast<std::size_t>(at[q])], a = g[bin_of[q]] * d;
+        diag[bin_of[q]] += a * a * unit;
+        count[bin_of[q]] += d * d * unit;
+      }
+    std::vector<double> f_directional(bins, 1.0), h_diffuse(bins, 0.0);
+    for (std::size_t i = 0; i < bins; ++i) {
+      const std::size_t lo = i > half ? i - half : 0, hi = std::min(bins - 1, i + half);
+      double ws = 0.0, ds = 0.0, cs = 0.0;
+      for (std::size_t j = lo; j <= hi; ++j) ws += w_energy[j], ds += diag[j], cs += count[j];
+      if (!(ws > 0.0)) continue;
+      if (cs > 0.0) h_diffuse[i] = std::sqrt(ws / cs);
+      const double mixed = ds + dirs.r[i] * (ws - ds);
+      if (mixed > 0.0) f_directional[i] = std::sqrt(ws / mixed);
+    }
+    BandDiracs d;
+    d.at = at;
+    d.dir.resize(at.size());
+    d.amp.resize(at.size());
+    for (std::size_t q = 0; q < at.size(); ++q) {
+      const std::size_t i = bin_of[q];
+      const bool directional = pick[q] < dirs.r[i];
+      d.dir[q] = local(directional ? dirs.u[i] : diffuse[q]);
+      d.amp[q] = (directional ? g[i] * f_directional[i] : h_diffuse[i]) * plan.diracs[static_cast<std::size_t>(at[q])];
+    }
+    std::vector<std::vector<double>> sequences(outputs, std::vector<double>(n, 0.0));
+    render(d, sequences);
+    parts[band].resize(outputs);
+    for (std::size_t o = 0; o < outputs; ++o) {
+      fft.forward(bandPart(sequences[o]), spectrum);
+      parts[band][o].assign(spectrum.begin() + bg.first, spectrum.begin() + bg.first + static_cast<long>(bg.w.size()));
+    }
+  });
+  RealFft fft(plan.fft_size);
+  for (std::size_t o = 0; o < outputs; ++o) {
+    std::vector<std::complex<double>> sum(static_cast<std::size_t>(fft.bins()), {0.0, 0.0});
+    for (std::size_t b = 0; b < nbands; ++b) {
+      const std::complex<double> turn = b < plan.traced_turn.size() ? plan.traced_turn[b] : std::complex<double>(1.0, 0.0);
+      for (std::size_t j = 0; j < parts[b][o].size(); ++j) sum[static_cast<std::size_t>(gains[b].first) + j] += turn * parts[b][o][j];
+    }
+    out[o] = fft.inverse(sum, plan.samples);
+    std::fill(out[o].begin(), out[o].begin() + std::min(plan.quiet, plan.samples), 0.0);
+  }
+  return out;
+}
+
+core::Vec3 localOf(const core::Vec3& w, const core::Vec3& forward, const core::Vec3& left, const core::Vec3& up) {
+  return {w.dot(forward), w.dot(left), w.dot(up)};
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& response, double sample_rate_hz,
+                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
+                                                     std::uint64_t seed, int order, const core::Vec3& forward,
+                                                     const core::Vec3& left, const core::Vec3& up) {
+  if (order < 1 || order > 3)
+    throw core::InputError("--order", "the Ambisonic order must be 1, 2 or 3, got " + std::to_string(order));
+  detail::SynthesisPlan plan;
+  const auto channels = static_cast<std::size_t>(spatial::ambisonicChannels(order));
+  std::vector<std::vector<double>> out(channels);
+  out[0] = detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
+                                     Phasing::Orthogonal, &plan);
+  const BandFilter filter(response.bands, sample_rate_hz);
+  RealFft fft(plan.fft_size);
+  const int m = fft.size(), nb = response.bands.size();
+  const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
+  std::vector<BandGains> gains;
+  for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
+  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}).
+  std::vector<std::vector<std::complex<double>>> arrivals(channels, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
+  std::vector<double> y(channels);
+  for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
+    const Arrival& arrival = response.arrivals[a];
+    if (!(arrival.direction.norm() > 0.0)) continue;
+    spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
+    const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
+    const std::complex<double> step = std::polar(1.0, phase_step);
+    for (int b = 0; b < nb; ++b) {
+      const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+      if (c == std::complex<double>(0.0, 0.0)) continue;
+      const BandGains& g = gains[static_cast<std::size_t>(b)];
+      std::complex<double> z = std::polar(1.0, phase_step * g.first);
+      for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) {
+        const std::complex<double> pulse = c * g.w[j] * z;
+        for (std::size_t ch = 1; ch < channels; ++ch) arrivals[ch][static_cast<std::size_t>(g.first) + j] += y[ch] * pulse;
+      }
+    }
+  }
+  const std::vector<std::vector<double>> traced =
+      tracedOutputs(response, plan, gains, seed, local, channels - 1,
+                    [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
+                      std::vector<double> ys(channels);
+                      for (std::size_t q = 0; q < d.at.size(); ++q) {
+                        spatial::realSphericalHarmonicsSn3d(order, d.dir[q], ys.data());
+                        for (std::size_t ch = 1; ch < channels; ++ch)
+                          seq[ch - 1][static_cast<std::size_t>(d.at[q])] = d.amp[q] * ys[ch];
+                      }
+                    });
+  for (std::size_t ch = 1; ch < channels; ++ch) {
+    out[ch] = fft.inverse(arrivals[ch], plan.samples);
+    for (std::size_t s = 0; s < out[ch].size(); ++s) out[ch][s] += traced[ch - 1][s];
+  }
+  return out;
+}
+
+std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& response, double sample_rate_hz,
+                                                    double length_s, double volume_m3, double speed_of_sound_m_s,
+                                                    std::uint64_t seed, const spatial::Hrtf& hrtf,
+                                                    const core::Vec3& forward, const core::Vec3& left,
+                                                    const core::Vec3& up) {
+  if (hrtf.sampleRateHz() != sample_rate_hz)
+    throw core::InputError("--hrtf", "the HRTF set was prepared for " + std::to_string(hrtf.sampleRateHz()) +
+                                         " Hz, the response is at " + std::to_string(sample_rate_hz) + " Hz");
+  detail::SynthesisPlan plan;
+  detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
+                            Phasing::Orthogonal, &plan);
+  const BandFilter filter(response.bands, sample_rate_hz);
+  RealFft fft(plan.fft_size);
+  const int m = fft.size(), nb = response.bands.size();
+  const std::size_t n = static_cast<std::size_t>(plan.samples), taps = static_cast<std::size_t>(hrtf.taps());
+  const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
+  std::vector<BandGains> gains;
+  for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
+  // Adds h (the HRIR) at sample s, scaled, into x (cut at the response's end).
+  const auto place = [&](std::vector<double>& x, long s, const float* h, double scale) {
+    for (std::size_t k = 0; k < taps && static_cast<std::size_t>(s) + k < n; ++k) x[static_cast<std::size_t>(s) + k] += scale * h[k];
+  };
+  // Arrivals: each band's pulse c·W_b·e^{−2πifτ} through the HRIR of the arrival's direction, at the sample
+  // nearest its delay: per band and ear, the HRIRs placed with weights Re(c) and Im(c) in two sequences X_R,
+  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}).
+  std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
+  std::vector<std::complex<double>> spectrum_r, spectrum_i;
+  for (int b = 0; b < nb; ++b) {
+    for (int side = 0; side < 2; ++side) {
+      std::vector<double> xr(n, 0.0), xi(n, 0.0);
+      bool any = false;
+      for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
+        const Arrival& arrival = response.arrivals[a];
+        const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+        if (c == std::complex<double>(0.0, 0.0)) continue;
+        const core::Vec3 d = arrival.direction.norm() > 0.0 ? local(arrival.direction) : core::Vec3(1, 0, 0);
+        const long s = std::lround(arrival.delay_s * sample_rate_hz);
+        if (s < 0 || static_cast<std::size_t>(s) >= n) continue;
+        const float* h = hrtf.ear(hrtf.nearest(d), side);
+        place(xr, s, h, c.real());
+        place(xi, s, h, c.imag());
+        any = true;
+      }
+      if (!any) continue;
+      fft.forward(xr, spectrum_r);
+      fft.forward(xi, spectrum_i);
+      const BandGains& g = gains[static_cast<std::size_t>(b)];
+      for (std::size_t j = 0; j < g.w.size(); ++j) {
+        const std::size_t k = static_cast<std::size_t>(g.first) + j;
+        ears[static_cast<std::size_t>(side)][k] += g.w[j] * (spectrum_r[k] + std::complex<double>(0.0, 1.0) * spectrum_i[k]);
+      }
+    }
+  }
+  const std::vector<std::vector<double>> traced =
+      tracedOutputs(response, plan, gains, seed, local, 2, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
+        for (std::size_t q = 0; q < d.at.size(); ++q) {
+          const int i = hrtf.nearest(d.dir[q]);
+          for (int side = 0; side < 2; ++side) place(seq[static_cast<std::size_t>(side)], d.at[q], hrtf.ear(i, side), d.amp[q]);
+        }
+      });
+  std::vector<std::vector<double>> out(2);
+  for (std::size_t side = 0; side < 2; ++side) {
+    out[side] = fft.inverse(ears[side], plan.samples);
+    for (std::size_t s = 0; s < n; ++s) out[side][s] += traced[side][s];
+  }
+  return out;
+}
+
+}  // namespace diffray::ir

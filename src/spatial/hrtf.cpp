@@ -1,0 +1,124 @@
+#include "diffray/spatial/hrtf.h"
+
+#include <mysofa.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <memory>
+
+#include "diffray/core/error.h"
+#include "diffray/dsp/resample.h"
+
+namespace diffray::spatial {
+
+namespace {
+
+struct SofaFree {
+  void operator()(MYSOFA_HRTF* h) const { mysofa_free(h); }
+};
+
+}  // namespace
+
+Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
+  core::requirePositive("HRTF: sample rate", sample_rate_hz);
+  Hrtf h;
+  h.path_ = path_in.empty() ? defaultPath() : path_in;
+  h.rate_hz_ = sample_rate_hz;
+  {
+    std::ifstream probe(h.path_, std::ios::binary);
+    if (!probe) {
+      if (path_in.empty())
+        throw core::InputError("--hrtf", "the default HRTF set " + h.path_ +
+                                             " is missing: install Debian's libmysofa1 (tools/deps.sh), or give --hrtf FILE.sofa");
+      throw core::InputError(h.path_, "cannot read the HRTF file");
+    }
+  }
+  int err = 0;
+  std::unique_ptr<MYSOFA_HRTF, SofaFree> sofa(mysofa_load(h.path_.c_str(), &err));
+  if (!sofa || err != MYSOFA_OK)
+    throw core::InputError(h.path_, "not a SOFA file libmysofa can read (libmysofa error " + std::to_string(err) + ")");
+  err = mysofa_check(sofa.get());
+  if (err != MYSOFA_OK)
+    throw core::InputError(h.path_, "not an HRTF set (SOFA SimpleFreeFieldHRIR, two ears): libmysofa's check "
+                                    "fails with error " + std::to_string(err));
+  const MYSOFA_HRTF& s = *sofa;
+  if (s.R != 2 || s.N == 0 || s.M == 0 || s.DataIR.elements != s.M * s.R * s.N || s.DataSamplingRate.elements < 1 ||
+      s.SourcePosition.elements != s.M * s.C)
+    throw core::InputError(h.path_, "not a two-ear HRTF set: " + std::to_string(s.R) + " receivers, " +
+                                        std::to_string(s.M) + " measurements of " + std::to_string(s.N) + " taps");
+  h.file_rate_hz_ = s.DataSamplingRate.values[0];
+  if (!(h.file_rate_hz_ > 0.0) || !std::isfinite(h.file_rate_hz_))
+    throw core::InputError(h.path_, "the HRTF set's sampling rate is not a positive number");
+  mysofa_tocartesian(sofa.get());
+  // Per-measurement (M × R) or per-receiver (R) delays, in samples at the file's rate: whole samples ahead.
+  const auto delay = [&](unsigned m, unsigned r) -> long {
+    if (s.DataDelay.elements == s.M * s.R) return std::lround(s.DataDelay.values[m * s.R + r]);
+    if (s.DataDelay.elements == s.R) return std::lround(s.DataDelay.values[r]);
+    return 0;
+  };
+  long longest = 0;
+  for (unsigned m = 0; m < s.M; ++m)
+    for (unsigned r = 0; r < 2; ++r) longest = std::max(longest, delay(m, r));
+  if (longest < 0 || longest > 100000) throw core::InputError(h.path_, "the HRTF set's delays are out of range");
+  const std::size_t n_file = s.N + static_cast<std::size_t>(longest);
+  std::vector<std::vector<float>> irs;  // per measurement: interleaved left, right at the file's rate
+  for (unsigned m = 0; m < s.M; ++m) {
+    const float* p = &s.SourcePosition.values[m * s.C];
+    const core::Vec3 d(p[0], p[1], p[2]);
+    if (!(d.norm() > 0.0) || !std::isfinite(d.norm()))
+      throw core::InputError(h.path_, "measurement " + std::to_string(m) + " has no source direction");
+    h.dirs_.push_back(d.normalized());
+    std::vector<float> ir(2 * n_file, 0.0f);
+    for (unsigned r = 0; r < 2; ++r) {
+      const long shift = delay(m, r);
+      for (unsigned k = 0; k < s.N; ++k) {
+        const float v = s.DataIR.values[(m * s.R + r) * s.N + k];
+        if (!std::isfinite(v)) throw core::InputError(h.path_, "an HRIR holds a value that is not a number");
+        ir[2 * (k + static_cast<std::size_t>(shift)) + r] = v;
+      }
+    }
+    if (h.file_rate_hz_ != sample_rate_hz) ir = dsp::resampleImpulseResponse(ir, 2, h.file_rate_hz_, sample_rate_hz);
+    irs.push_back(std::move(ir));
+  }
+  // The delay common to every HRIR (the measurement's distance, the converter's latency) is dropped, up to
+  // 8 samples kept ahead of the earliest onset (a tap above 1 % of its HRIR's peak), so that a binaural
+  // response starts where W does.
+  std::size_t lead = irs.front().size() / 2;
+  for (const auto& ir : irs) {
+    float peak = 0.0f;
+    for (float v : ir) peak = std::max(peak, std::abs(v));
+    for (std::size_t k = 0; k < ir.size() / 2; ++k)
+      if (std::abs(ir[2 * k]) > 0.01f * peak || std::abs(ir[2 * k + 1]) > 0.01f * peak) {
+        lead = std::min(lead, k);
+        break;
+      }
+  }
+  const std::size_t trim = lead > 8 ? lead - 8 : 0;
+  for (auto& ir : irs) ir.erase(ir.begin(), ir.begin() + static_cast<long>(2 * trim));
+  h.taps_ = static_cast<int>(irs.front().size() / 2);
+  // Diffuse-field normalisation: the mean over directions of the ears' mean energy is 1.
+  double energy = 0.0;
+  for (const auto& ir : irs)
+    for (float v : ir) energy += static_cast<double>(v) * v;
+  energy /= 2.0 * static_cast<double>(irs.size());
+  if (!(energy > 0.0)) throw core::InputError(h.path_, "every HRIR of the set is silent");
+  const auto scale = static_cast<float>(1.0 / std::sqrt(energy));
+  h.taps_data_.reserve(irs.size() * 2 * static_cast<std::size_t>(h.taps_));
+  for (const auto& ir : irs)
+    for (int side = 0; side < 2; ++side)
+      for (int k = 0; k < h.taps_; ++k) h.taps_data_.push_back(ir[2 * static_cast<std::size_t>(k) + side] * scale);
+  return h;
+}
+
+int Hrtf::nearest(const core::Vec3& d) const {
+  int best = 0;
+  double best_cos = -2.0;
+  for (std::size_t i = 0; i < dirs_.size(); ++i) {
+    const double c = dirs_[i].dot(d);
+    if (c > best_cos) best_cos = c, best = static_cast<int>(i);
+  }
+  return best;
+}
+
+}  // namespace diffray::spatial
