@@ -382,6 +382,9 @@ expect_clean "validate --order 2.5"    "out.csv*" "--order: must be a whole numb
 expect_clean "validate --floor 0.7"    "out.csv*" "--floor: must be a whole number" validate door-room --floor 0.7 --rays 1000 "$csv"
 expect_clean "ir --ism-order 2.5"      "out.*" "--ism-order: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 1000 --ism-order 2.5
 expect_clean "ir --threads 1e-400"     "out.*" "--threads: must be a whole number" ir "$rooms/shoebox.json" -o "$tmp/out.wav" --rays 1000 --threads 1e-400
+printf 'not a SOFA file\n' >"$tmp/bad.sofa"
+expect_clean "door --hrtf not SOFA"     "door.*" "bad.sofa: not a SOFA file" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --format binaural --hrtf "$tmp/bad.sofa"
+expect_clean "door --hrtf without binaural" "door.*" "--hrtf: is for --format binaural" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --hrtf "$tmp/bad.sofa"
 expect_clean "door --steps 2.5"        "door.*" "--steps: must be a whole number" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --steps 2.5
 expect_clean "wdf --count 2.5"         "out.csv*" "--count: must be a whole number" wdf slits --count 2.5 "$csv"
 expect_clean "wdf --count 0x3"         "out.csv*" "--count: must be a whole number" wdf slits --count 0x3 "$csv"

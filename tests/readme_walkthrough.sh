@@ -57,7 +57,8 @@ for l in side["listeners"]:
 info = subprocess.run(["soxi", "-c", "my-room/office-ir.wav"], capture_output=True, text=True)
 if info.returncode == 0 and info.stdout.strip() != "2":
     bad.append(f"office-ir.wav has {info.stdout.strip()} channels, not 2")
-for f in ["my-room/decay.png", "my-room/dry.wav", "my-room/wet.wav", "my-room/wet.png", "my-room/two-rooms.wav"]:
+for f in ["my-room/decay.png", "my-room/dry.wav", "my-room/wet.wav", "my-room/wet.png", "my-room/two-rooms.wav",
+          "my-room/two-rooms-3d.B-hidden.binaural.wav", "my-room/door.wav"]:
     import os
     if not os.path.exists(f) or os.path.getsize(f) == 0:
         bad.append(f"{f} missing or empty")

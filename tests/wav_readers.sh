@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every kind of WAV diffray writes (signal: sweep, clicks, speech; ir, omni, AmbiX and binaural; auralize, plain and --normalize; door),
+# Every kind of WAV diffray writes (signal: sweep, clicks, speech; ir, omni, AmbiX and binaural; auralize, plain and --normalize; door, omni and binaural),
 # read by sox (soxi) and by libsndfile (diffray metrics): both must see the same channels and frames, sox
 # must print no warning, and libsndfile's reader must say nothing about the file.
 # The one exception, for files of more than two channels only: sox 14.4.2 (Debian 12) prints "wave header
@@ -71,6 +71,8 @@ run door two-rooms.json --in clicks.wav -o door.wav --close 0.05:0.15 --steps 2 
 check door.wav 3
 run door two-rooms.json --in clicks.wav -o door1.wav --close 0.05:0.15 --steps 2 --rays 2000 --listener A
 check door1.wav 1
+run door two-rooms.json --in clicks.wav -o doorb.wav --close 0.05:0.15 --steps 2 --rays 2000 --listener B-hidden --format binaural
+check doorb.wav 2
 
 echo "wav_readers: $passes passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -6,7 +6,8 @@
 // IRs differ by the door only and a crossfade between them cancels nothing), and
 // the dry signal is convolved through them with crossfades between their key times
 // (dsp::CrossfadeConvolver), streaming. The room's sources play the dry signal (a multichannel one is mixed
-// down to mono); OUT.wav has one channel per listener (or the one --listener names). Beside it: OUT.png, the
+// down to mono); OUT.wav has one channel per listener (or the one --listener names), or with --format
+// binaural two per listener (left, right: ir::synthesizeBinaural, coherent phasing). Beside it: OUT.png, the
 // spectrogram of the first channel with START and END marked; OUT.json, the sidecar (the schedule, each step's
 // band levels re the open door per listener, the panel's transmission loss); OUT.csv, the same levels as a
 // table. Every output is written whole or not at all. Memory: the K IRs, and one channel of the output for
@@ -19,6 +20,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "diffray/audio/wav.h"
@@ -36,7 +38,9 @@
 #include "diffray/dsp/spectrogram.h"
 #include "diffray/ir/synthesis.h"
 #include "diffray/room/checks.h"
+#include "diffray/room/json_fields.h"
 #include "diffray/room/scene_file.h"
+#include "diffray/spatial/hrtf.h"
 
 namespace diffray::cli {
 
@@ -49,6 +53,7 @@ struct DoorOptions {
   int diffraction_order = 1;
   std::uint64_t rays = 0;
   double gain_db = 0.0;
+  std::string format = "omni", hrtf;
 };
 
 constexpr int kBlock = 2048;          ///< convolution block (frames)
@@ -150,6 +155,13 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->get_option("--diffraction")->default_val("wbsdf");
   sub->add_option("--door", opts->door, "the door's name (default: the room's only door)");
   sub->add_option("--listener", opts->listener, "render this listener only (default: all, one channel each)");
+  sub->add_option("--format", opts->format,
+                  "omni (default): one channel per listener; binaural: two per listener (left, right) through an HRTF")
+      ->check(CLI::IsMember({"omni", "binaural"}));
+  sub->add_option("--hrtf", opts->hrtf,
+                  "SOFA HRTF set of --format binaural (default: Debian's MIT KEMAR set, " +
+                      std::string(spatial::Hrtf::defaultPath()) + ")")
+      ->check(inputPathValidator());
   addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
   CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
                                   ->transform(seedValidator());
@@ -199,6 +211,17 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
                                              " Hz, cannot be resampled to it: " + reasonOf(e));
       }
     }
+    // The HRTF set at the IRs' rate, before the tracing: a bad file is one line and nothing written.
+    std::optional<spatial::Hrtf> hrtf;
+    if (!opts->hrtf.empty() && opts->format != "binaural") throw core::InputError("--hrtf", "is for --format binaural");
+    if (opts->format == "binaural") {
+      hrtf = spatial::Hrtf::load(opts->hrtf, synth_fs);
+      std::cerr << "diffray: info: HRTF " << hrtf->path() << " (" << hrtf->directions() << " directions"
+                << (hrtf->fileRateHz() != synth_fs ? ", resampled from " + room::formatNumber(hrtf->fileRateHz()) +
+                                                         " to " + room::formatNumber(synth_fs) + " Hz)"
+                                                   : ")")
+                << "\n";
+    }
     // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
     const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);
     if (end_s > static_cast<double>(reader.frames()) / fs)
@@ -214,6 +237,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     co.max_diffractions = opts->diffraction_order;
     co.rays = opts->rays;
     co.seed = common.seed;
+    co.directions = hrtf.has_value();
     const std::uint64_t rays = opts->rays ? opts->rays : room.output.rays;
     core::Progress progress("door " + room.name, rays * room.sources.size() * schedule.size());
     co.on_progress = [&progress](std::uint64_t n) { progress.add(n); };
@@ -241,8 +265,15 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       nlohmann::ordered_json levels = nlohmann::ordered_json::object(), energies = nlohmann::ordered_json::object();
       for (std::size_t i = 0; i < chosen.size(); ++i) {
         const int l = chosen[i];
-        irs[k].push_back(door::impulseResponseFor(cr.responses[k][l], room.output.sample_rate_hz, fs, cr.length_s,
-                                                  cr.volume_m3, cr.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
+        if (hrtf) {
+          for (std::vector<float>& ear :
+               door::binauralResponsesFor(cr.responses[k][l], room.output.sample_rate_hz, fs, cr.length_s, cr.volume_m3,
+                                          cr.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf, room.listeners[l]))
+            irs[k].push_back(std::move(ear));
+        } else {
+          irs[k].push_back(door::impulseResponseFor(cr.responses[k][l], room.output.sample_rate_hz, fs, cr.length_s,
+                                                    cr.volume_m3, cr.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
+        }
         nlohmann::ordered_json row = nlohmann::ordered_json::array(), absolute = nlohmann::ordered_json::array();
         for (int b = 0; b < room.bands.size(); ++b) absolute.push_back(energy[k][i][b]);
         energies[room.listeners[l].name] = absolute;

@@ -6,7 +6,9 @@
 #include "diffray/core/error.h"
 #include "diffray/door/sliding_panel.h"
 #include "diffray/dsp/resample.h"
+#include "diffray/ir/spatial_synthesis.h"
 #include "diffray/ir/synthesis.h"
+#include "diffray/spatial/hrtf.h"
 #include "diffray/transport/room_simulation.h"
 
 namespace diffray::door {
@@ -32,6 +34,11 @@ void addScaled(ir::EnergyResponse& response, const ir::EnergyResponse& other, co
     auto& h = response.traced[b];
     const auto& o = other.traced[b];
     for (std::size_t i = 0; i < std::min(h.size(), o.size()); ++i) h[i] += factor[b] * o[i];
+    if (static_cast<int>(std::min(response.directions.size(), other.directions.size())) > b) {
+      auto& v = response.directions[b];
+      const auto& ov = other.directions[b];
+      for (std::size_t i = 0; i < std::min(v.size(), ov.size()); ++i) v[i] += factor[b] * ov[i];
+    }
   }
   for (ir::Arrival a : other.arrivals) {
     for (int b = 0; b < bands; ++b) a.energy[b] *= factor[b];
@@ -80,6 +87,7 @@ ClosingResponse simulateClosing(const room::Room& room, int door, const std::vec
     so.max_diffractions = options.max_diffractions;
     so.length_s = k == 0 ? options.length_s : out.length_s;
     so.on_progress = options.on_progress;
+    so.directions = options.directions;
     transport::RoomSimulation sim = transport::simulateRoom(r, so);
     if (k == 0) {
       out.length_s = sim.length_s;
@@ -124,17 +132,40 @@ double synthesisRateHz(const core::Bands& bands, double room_hz, double signal_h
   return bands.upperHz(bands.size() - 1) < 0.5 * signal_hz ? signal_hz : room_hz;
 }
 
+namespace {
+
+// An IR synthesized at synthesisRateHz() as a float filter at signal_hz: scaled when it was made at the
+// signal's rate (`fits`), resampled from the room's rate otherwise (impulseResponseFor).
+std::vector<float> atSignalRate(const std::vector<double>& h, bool fits, double room_hz, double signal_hz) {
+  if (!fits) return dsp::resampleImpulseResponse(std::vector<float>(h.begin(), h.end()), 1, room_hz, signal_hz);
+  const double scale = std::sqrt(room_hz / signal_hz);
+  std::vector<float> out(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) out[i] = static_cast<float>(scale * h[i]);
+  return out;
+}
+
+}  // namespace
+
 std::vector<float> impulseResponseFor(const ir::EnergyResponse& response, double room_hz, double signal_hz,
                                       double length_s, double volume_m3, double speed_of_sound_m_s,
                                       std::uint64_t seed) {
   const double synth_hz = synthesisRateHz(response.bands, room_hz, signal_hz);
   const bool fits = synth_hz == signal_hz;
-  const std::vector<double> h =
-      ir::synthesize(response, synth_hz, length_s, volume_m3, speed_of_sound_m_s, seed, ir::Phasing::Coherent);
-  if (!fits) return dsp::resampleImpulseResponse(std::vector<float>(h.begin(), h.end()), 1, room_hz, signal_hz);
-  const double scale = std::sqrt(room_hz / signal_hz);
-  std::vector<float> out(h.size());
-  for (std::size_t i = 0; i < h.size(); ++i) out[i] = static_cast<float>(scale * h[i]);
+  return atSignalRate(ir::synthesize(response, synth_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
+                                     ir::Phasing::Coherent),
+                      fits, room_hz, signal_hz);
+}
+
+std::vector<std::vector<float>> binauralResponsesFor(const ir::EnergyResponse& response, double room_hz,
+                                                     double signal_hz, double length_s, double volume_m3,
+                                                     double speed_of_sound_m_s, std::uint64_t seed,
+                                                     const spatial::Hrtf& hrtf, const room::Listener& listener) {
+  const double synth_hz = synthesisRateHz(response.bands, room_hz, signal_hz);
+  std::vector<std::vector<float>> out;
+  for (const std::vector<double>& ear :
+       ir::synthesizeBinaural(response, synth_hz, length_s, volume_m3, speed_of_sound_m_s, seed, hrtf, listener.forward,
+                              listener.left, listener.up, ir::Phasing::Coherent))
+    out.push_back(atSignalRate(ear, synth_hz == signal_hz, room_hz, signal_hz));
   return out;
 }
 

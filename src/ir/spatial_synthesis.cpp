@@ -251,13 +251,12 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
                                                     std::uint64_t seed, const spatial::Hrtf& hrtf,
                                                     const core::Vec3& forward, const core::Vec3& left,
-                                                    const core::Vec3& up) {
+                                                    const core::Vec3& up, Phasing phasing) {
   if (hrtf.sampleRateHz() != sample_rate_hz)
     throw core::InputError("--hrtf", "the HRTF set was prepared for " + std::to_string(hrtf.sampleRateHz()) +
                                          " Hz, the response is at " + std::to_string(sample_rate_hz) + " Hz");
   detail::SynthesisPlan plan;
-  detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
-                            Phasing::Orthogonal, &plan);
+  detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing, &plan);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(plan.fft_size);
   const int m = fft.size(), nb = response.bands.size();

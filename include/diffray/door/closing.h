@@ -23,6 +23,10 @@
 #include "diffray/ir/response.h"
 #include "diffray/room/room.h"
 
+namespace diffray::spatial {
+class Hrtf;
+}
+
 namespace diffray::door {
 
 struct ClosingStep {
@@ -41,6 +45,7 @@ struct ClosingOptions {
   std::uint64_t seed = 1;
   double length_s = 0.0;   ///< 0 = the room file's (or auto, from the open door)
   int panel_material = -1; ///< index into room.materials; −1 = the door's own (Occluder::panel_material)
+  bool directions = false; ///< record where the energy comes from (for binaural IRs)
   std::function<void(std::uint64_t)> on_progress;  ///< rays done (thread-safe)
 };
 
@@ -90,5 +95,12 @@ double synthesisRateHz(const core::Bands& bands, double room_hz, double signal_h
 std::vector<float> impulseResponseFor(const ir::EnergyResponse& response, double room_hz, double signal_hz,
                                       double length_s, double volume_m3, double speed_of_sound_m_s,
                                       std::uint64_t seed);
+
+/// The same for both ears (ir::synthesizeBinaural, coherent phasing) of `listener` through `hrtf`, which
+/// must be prepared at synthesisRateHz(bands, room_hz, signal_hz): left, right.
+std::vector<std::vector<float>> binauralResponsesFor(const ir::EnergyResponse& response, double room_hz,
+                                                     double signal_hz, double length_s, double volume_m3,
+                                                     double speed_of_sound_m_s, std::uint64_t seed,
+                                                     const spatial::Hrtf& hrtf, const room::Listener& listener);
 
 }  // namespace diffray::door

@@ -27,6 +27,7 @@
 
 #include "diffray/core/math.h"
 #include "diffray/ir/response.h"
+#include "diffray/ir/synthesis.h"
 
 namespace diffray::spatial {
 class Hrtf;
@@ -51,11 +52,12 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
 /// rendered from its own direction, as the spatial decomposition method renders measured responses (Tervo,
 /// Pätynen, Kuusinen & Lokki, J. Audio Eng. Soc. 61(1/2), 2013). The HRIRs' diffuse-field normalisation
 /// (spatial/hrtf.h) keeps each ear's energy equal to W's on average in a diffuse field. Throws
-/// core::InputError as synthesize() does, and for an HRTF set prepared at another rate.
+/// core::InputError as synthesize() does, and for an HRTF set prepared at another rate. `phasing` as
+/// synthesize()'s (Coherent for responses a crossfade moves between: the closing door).
 std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& response, double sample_rate_hz,
                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
                                                     std::uint64_t seed, const spatial::Hrtf& hrtf,
                                                     const core::Vec3& forward, const core::Vec3& left,
-                                                    const core::Vec3& up);
+                                                    const core::Vec3& up, Phasing phasing = Phasing::Orthogonal);
 
 }  // namespace diffray::ir
