@@ -127,6 +127,7 @@ printf 'not a SOFA file\n' >"$tmp/bad.sofa"
 expect_ir_error "--hrtf: not a SOFA file" "$good" --format binaural --hrtf "$tmp/bad.sofa"
 expect_ir_error "--hrtf: missing file"  "$good" --format binaural --hrtf "$tmp/none.sofa"
 expect_ir_error "--hrtf without binaural" "$good" --hrtf "$tmp/bad.sofa"
+expect_ir_says "--plot-directions x.svg" "ending in .png" "$good" --plot-directions "$tmp/out.svg"
 expect_ir_error "listener look_at itself" "{$mat, $box, $src, \"listeners\": [{\"position\": [1,1,1], \"look_at\": [1,1,1]}]}"
 printf '%s\n' "$good" >"$tmp/room.json"
 expect_error "ir: output folder missing" ir "$tmp/room.json" -o "$tmp/no/such/dir/out.wav" --rays 1000

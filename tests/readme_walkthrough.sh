@@ -58,7 +58,7 @@ info = subprocess.run(["soxi", "-c", "my-room/office-ir.wav"], capture_output=Tr
 if info.returncode == 0 and info.stdout.strip() != "2":
     bad.append(f"office-ir.wav has {info.stdout.strip()} channels, not 2")
 for f in ["my-room/decay.png", "my-room/dry.wav", "my-room/wet.wav", "my-room/wet.png", "my-room/two-rooms.wav",
-          "my-room/two-rooms-3d.B-hidden.binaural.wav", "my-room/door.wav"]:
+          "my-room/two-rooms-3d.B-hidden.binaural.wav", "my-room/door.wav", "my-room/directions.png"]:
     import os
     if not os.path.exists(f) or os.path.getsize(f) == 0:
         bad.append(f"{f} missing or empty")

@@ -52,6 +52,7 @@ struct IrOptions {
   std::string format = "omni";
   int order = 1;
   std::string hrtf;
+  std::string plot_directions;
 };
 
 // The spatial IR file of one listener: OUT's stem, the listener's name (characters other than letters,
@@ -178,6 +179,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       "(stderr and the sidecar) and is labelled in --plot.");
   sub->add_option("--plot", opts->plot, "draw each listener's energy decay curves per band into this PNG (gnuplot)")
       ->check(outputPathValidator());
+  sub->add_option("--plot-directions", opts->plot_directions,
+                  "draw where each listener's sound comes from over its first 200 ms into this PNG (gnuplot)")
+      ->check(outputPathValidator());
   addDiffractionOptions(sub, opts->diffraction, opts->diffraction_order);
   addContinuationOption(sub, opts->portal);
   sub->add_option("--format", opts->format,
@@ -219,7 +223,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     std::vector<std::string> spatial_files;
     if (ambix || binaural)
       for (const room::Listener& li : room.listeners) spatial_files.push_back(spatialFile(wav, li.name, opts->format));
-    std::vector<std::string> outputs{wav, side_json, side_csv, opts->plot};
+    std::vector<std::string> outputs{wav, side_json, side_csv, opts->plot, opts->plot_directions};
     outputs.insert(outputs.end(), spatial_files.begin(), spatial_files.end());
     checkOutputFiles(outputs, room.input_files);
     // The HRTF set before any work: a bad file is one line and nothing written.
@@ -234,6 +238,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                 << "\n";
     }
     checkPlotOption("--plot", opts->plot);
+    checkPlotOption("--plot-directions", opts->plot_directions);
     room::checkSynthesis(room, opts->length_s, room.output.sample_rate_hz,
                    (room.file.empty() ? std::string("room") : room.file) + ": output.sample_rate_hz");
 
@@ -436,6 +441,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       std::vector<std::string> names;
       for (const auto& li : room.listeners) names.push_back(li.name);
       written.write(opts->plot, [&](const std::string& f) { writeDecayPlot(f, names, sim.listeners, plot_flags); });
+    }
+    if (!opts->plot_directions.empty()) {
+      std::vector<std::string> names;
+      for (const auto& li : room.listeners) names.push_back(li.name);
+      written.write(opts->plot_directions,
+                    [&](const std::string& f) { writeDirectionPlot(f, names, sim.listeners, room.listeners); });
     }
     written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
     for (std::size_t l = 0; l < spatial_irs.size(); ++l)

@@ -29,6 +29,15 @@ void checkPlotOption(const std::string& option, const std::string& path);
 /// `s` as a gnuplot single-quoted string (quotes doubled), for titles and file names in scripts.
 std::string gnuplotQuoted(const std::string& s);
 
+/// Where each listener's sound comes from over time (`diffray ir --plot-directions`): one panel per
+/// listener, one point per window of `window_s` from the onset of the 500 Hz – 2 kHz octaves to `span_s`
+/// after it, at the azimuth (in the listener's frame, `frames`) of the window's energy vector over those
+/// bands (arrivals and traced part), coloured by its level re the loudest window and sized by r_E. Needs
+/// responses that recorded directions. Throws core::InputError naming --plot-directions on failure.
+void writeDirectionPlot(const std::string& png_path, const std::vector<std::string>& names,
+                        const std::vector<ir::EnergyResponse>& responses, const std::vector<room::Listener>& frames,
+                        double window_s = 0.002, double span_s = 0.2);
+
 /// Throws core::InputError naming --plot when gnuplot is missing or fails.
 void writeValidationPlot(const std::string& png_path, const std::vector<validate::CaseResult>& results);
 
