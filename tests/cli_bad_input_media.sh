@@ -47,6 +47,9 @@ expect_auralize_error "NaN gain"               --ir "$tmp/ok.wav" --in "$tmp/ok.
 expect_auralize_error "no --in"                --ir "$tmp/ok.wav" -o "$tmp/wet.wav"
 # --gain is bounded like door's (±120 dB) when parsing, not after the whole convolution.
 expect_clean "auralize: gain 200 dB"       "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --gain 200
+expect_clean "auralize: --decode a mono IR" "wet.*" "ok.wav: has 1 channels: an AmbiX signal" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --decode binaural
+expect_clean "auralize: --decode 30:95"   "wet.*" "--decode: \"30:95\"" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --decode 30:95
+expect_clean "auralize: --hrtf without --decode binaural" "wet.*" "--hrtf: is for --decode binaural" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --hrtf "$tmp/ok.wav"
 expect_clean "auralize: gain -1e9 dB"      "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" -o "$tmp/wet.wav" --normalize --gain -1e9
 expect_clean "auralize: --play, gain 200"  "wet.*" "--gain" auralize --ir "$tmp/ok.wav" --in "$tmp/ok.wav" --play --gain 200
 cp "$tmp/ok.wav" "$tmp/dry.wav"

@@ -37,20 +37,6 @@ std::vector<double> powerSpectrum(const std::vector<double>& x, int n, int k0, i
   return out;
 }
 
-// The lag (samples, left relative to right) of the largest cross-correlation within ±1 ms.
-int itdSamples(const std::vector<double>& l, const std::vector<double>& r) {
-  int best = 0;
-  double best_v = -1e300;
-  for (int lag = -48; lag <= 48; ++lag) {
-    double v = 0.0;
-    for (int t = 0; t < static_cast<int>(l.size()); ++t) {
-      const int u = t - lag;
-      if (u >= 0 && u < static_cast<int>(r.size())) v += l[t] * r[u];
-    }
-    if (v > best_v) best_v = v, best = lag;
-  }
-  return best;
-}
 
 TEST(IrBinaural, SingleArrivalCarriesTheHrtfsTimeAndLevelDifferences) {
   // One arrival from azimuth 60° (to the left), elevation 0: a direction of the MIT KEMAR grid, so both
@@ -80,7 +66,7 @@ TEST(IrBinaural, SingleArrivalCarriesTheHrtfsTimeAndLevelDifferences) {
   const std::vector<double> hld(hl.begin(), hl.end()), hrd(hr.begin(), hr.end());
 
   // ITD: the left ear leads for a source on the left.
-  const int itd_ours = itdSamples(ears[0], ears[1]), itd_sofa = itdSamples(hld, hrd);
+  const int itd_ours = test::interauralLagSamples(ears[0], ears[1]), itd_sofa = test::interauralLagSamples(hld, hrd);
   EXPECT_LT(itd_sofa, -10);  // ~0.5 ms
   EXPECT_NEAR(itd_ours, itd_sofa, 1);
 

@@ -31,6 +31,8 @@
 #include "diffray/core/temp_files.h"
 #include "diffray/dsp/multichannel_convolver.h"
 #include "diffray/dsp/resample.h"
+#include "diffray/spatial/ambisonic_decoder.h"
+#include "diffray/spatial/hrtf.h"
 
 namespace diffray::cli {
 
@@ -122,6 +124,20 @@ void scaleInto(audio::AudioReader& from, float gain, audio::WavWriter& writer) {
 
 }  // namespace
 
+std::vector<std::vector<float>> decodedIr(std::vector<std::vector<float>> channels, const PlayOptions& o, double rate_hz) {
+  if (!o.hrtf.empty() && o.decode != "binaural") throw core::InputError("--hrtf", "is for --decode binaural");
+  if (o.decode.empty()) return channels;
+  const std::vector<core::Vec3> layout =
+      o.decode == "binaural" ? std::vector<core::Vec3>() : spatial::parseLayout(o.decode, "--decode");
+  spatial::ambisonicOrderOf(static_cast<int>(channels.size()), o.ir);
+  if (!layout.empty()) return spatial::decodeToLayout(channels, layout);
+  const spatial::Hrtf hrtf = spatial::Hrtf::load(o.hrtf, rate_hz);
+  std::cout << "decoding the AmbiX IR to binaural through " << hrtf.path() << " (" << hrtf.directions() << " directions"
+            << (hrtf.fileRateHz() != rate_hz ? ", resampled to " + std::to_string(static_cast<long>(rate_hz)) + " Hz)" : ")")
+            << "\n";
+  return spatial::decodeToBinaural(channels, hrtf);
+}
+
 std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const std::string& ir_path,
                                          bool no_resample) {
   std::vector<float> h(ir.samples.begin(), ir.samples.end());
@@ -166,6 +182,13 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
                 "scale the output's peak to -1 dBFS (two passes through a temporary file; --gain applies on top)");
   sub->add_flag("--no-resample", o->no_resample,
                 "refuse an IR whose sample rate differs from the input's instead of resampling it");
+  sub->add_option("--decode", o->playback.decode,
+                  "an AmbiX IR (diffray ir --format ambix) decoded to binaural (two ears, through --hrtf) or to "
+                  "loudspeakers AZ:EL,AZ:EL,... in degrees (mode matching; one output channel each)");
+  sub->add_option("--hrtf", o->playback.hrtf,
+                  "SOFA HRTF set of --decode binaural (default: Debian's MIT KEMAR set, " +
+                      std::string(spatial::Hrtf::defaultPath()) + ")")
+      ->check(inputPathValidator());
   sub->add_flag("--play", o->play, "play the result in real time on an audio device (PortAudio)");
   sub->add_option("--device", o->playback.device, "with --play: output device, by index or name substring "
                                                    "(default: the system's default output)");
@@ -196,7 +219,8 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
     const audio::AudioBuffer ir = audio::readAudio(o->ir, &cut);
     warnOf(dry.warning());
     warnOf(cut);
-    const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample);
+    const std::vector<std::vector<float>> ir_channels =
+        decodedIr(irAtRate(ir, dry.sampleRateHz(), o->ir, o->no_resample), o->playback, dry.sampleRateHz());
     const long ir_frames = static_cast<long>(ir_channels.front().size());
     const int fft_block = blockFor(ir_frames);
     dsp::MultichannelConvolver conv;

@@ -71,7 +71,8 @@ int playAuralization(const PlayOptions& o) {
   const audio::AudioBuffer ir = audio::readAudio(o.ir, &cut);
   warnOf(dry.warning());
   warnOf(cut);
-  const std::vector<std::vector<float>> ir_channels = irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample);
+  const std::vector<std::vector<float>> ir_channels =
+      decodedIr(irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample), o, dry.sampleRateHz());
   audio::PortAudioHost host;
   const audio::OutputDevice device = host.chooseOutputDevice(o.device);
 

@@ -17,6 +17,8 @@ struct PlayOptions {
   int block_frames = 256; ///< the audio callback's buffer = the convolver's head block (the latency)
   double gain_db = 0.0;
   bool no_resample = false;  ///< refuse an IR at another rate than the dry signal's instead of resampling it
+  std::string decode;  ///< empty: the IR as it is; "binaural" or "AZ:EL,…": an AmbiX IR decoded so
+  std::string hrtf;    ///< the SOFA set of decode "binaural" (empty: the default set)
 };
 
 /// The IR's channels at the dry signal's rate `rate_hz`: as read when the rates agree, else resampled as a
@@ -24,6 +26,12 @@ struct PlayOptions {
 /// `ir_path`) when `no_resample`. Defined in src/cli/auralize.cpp.
 std::vector<std::vector<float>> irAtRate(const audio::AudioBuffer& ir, double rate_hz, const std::string& ir_path,
                                          bool no_resample);
+
+/// The IR's channels as `o.decode` asks (spatial/ambisonic_decoder.h): unchanged when it is empty, else an
+/// AmbiX IR (4, 9 or 16 channels) decoded to the loudspeakers of the list or, for "binaural", to the two ears
+/// through `o.hrtf` prepared at `rate_hz` (with one info line on stdout). Throws core::InputError naming
+/// --decode, --hrtf or the IR. Defined in src/cli/auralize.cpp.
+std::vector<std::vector<float>> decodedIr(std::vector<std::vector<float>> channels, const PlayOptions& o, double rate_hz);
 
 /// The audio block (--block) playback accepts, in frames.
 inline constexpr int kMinBlockFrames = 16, kMaxBlockFrames = 16384;
