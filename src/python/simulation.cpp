@@ -18,11 +18,13 @@
 #include "diffray/core/parallel.h"
 #include "diffray/core/progress.h"
 #include "diffray/diffray.h"
+#include "diffray/ir/spatial_synthesis.h"
 #include "diffray/ir/strength.h"
 #include "diffray/ir/uncertainty.h"
 #include "diffray/render/film.h"
 #include "diffray/render/light_tracer.h"
 #include "diffray/room/checks.h"
+#include "diffray/spatial/hrtf.h"
 
 namespace py = pybind11;
 
@@ -89,6 +91,7 @@ std::shared_ptr<Simulation> simulate(const SceneRoom& scene, const py::object& r
     throw core::InputError("length", "must be 0 (the room's) or in [0.001, 120] s");
   if (threads < 0) throw core::InputError("threads", "must be >= 0 (0: every core)");
   so.length_s = length;
+  so.directions = true;  // as `diffray ir`: where the energy comes from, for the spatial IRs
   so.diffraction = diffraction;
   so.max_diffractions = diffraction_order;
   room::checkSynthesis(room, length, room.output.sample_rate_hz,
@@ -162,6 +165,32 @@ py::array_t<double> impulseResponse(const Simulation& s, long listener, const py
     ir = diffray::impulseResponse(room, s.sim, static_cast<std::size_t>(listener), s.seed);
   }
   return py::array_t<double>(static_cast<py::ssize_t>(ir.samples.size()), ir.samples.data());
+}
+
+// The listener's spatial IR as a (channels, samples) array: AmbiX of `order`, or binaural through `hrtf`.
+py::array_t<double> spatialIr(const Simulation& s, long listener, int order, const std::string* hrtf_path) {
+  const ir::EnergyResponse& r = listenerOf(s, listener);
+  const room::Listener& li = s.room.listeners[static_cast<std::size_t>(listener)];
+  const double fs = s.room.output.sample_rate_hz;
+  std::vector<std::vector<double>> channels;
+  {
+    py::gil_scoped_release release;
+    const std::uint64_t seed = ir::listenerSeed(s.seed, static_cast<std::size_t>(listener));
+    if (hrtf_path) {
+      const spatial::Hrtf hrtf = spatial::Hrtf::load(*hrtf_path, fs);
+      channels = ir::synthesizeBinaural(r, fs, s.sim.length_s, s.room.volume(), s.sim.speed_of_sound_m_s, seed, hrtf,
+                                        li.forward, li.left, li.up);
+    } else {
+      channels = ir::synthesizeAmbisonic(r, fs, s.sim.length_s, s.room.volume(), s.sim.speed_of_sound_m_s, seed, order,
+                                         li.forward, li.left, li.up);
+    }
+  }
+  const auto rows = static_cast<py::ssize_t>(channels.size()), cols = static_cast<py::ssize_t>(channels.at(0).size());
+  py::array_t<double> out({rows, cols});
+  auto view = out.mutable_unchecked<2>();
+  for (py::ssize_t c = 0; c < rows; ++c)
+    for (py::ssize_t k = 0; k < cols; ++k) view(c, k) = channels[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)];
+  return out;
 }
 
 // The figures of `diffray ir --json`'s "bands" under Python's names (T20, ..., Ts); the other keys as they are.
@@ -276,6 +305,18 @@ void bindSimulation(py::module_& m) {
            "The listener's impulse response (float64, pressure in physical units: Σp² is energy in J/m²) at "
            "`sample_rate` Hz (default: the room's, .sample_rate); the same samples as channel `listener` of "
            "`diffray ir --seed SEED`.")
+      .def("ambisonic_response",
+           [](const Simulation& s, long listener, int order) { return spatialIr(s, listener, order, nullptr); },
+           py::arg("listener") = 0, py::arg("order") = 1,
+           "The listener's AmbiX impulse response (ACN order, SN3D; order 1-3) as a (channels, samples) array at "
+           ".sample_rate, in the listener's frame; channel 0 (W) is impulse_response(listener). The samples of "
+           "`diffray ir --format ambix --order ORDER --seed SEED`.")
+      .def("binaural_response",
+           [](const Simulation& s, long listener, const std::string& hrtf) { return spatialIr(s, listener, 0, &hrtf); },
+           py::arg("listener") = 0, py::arg("hrtf") = "",
+           "The listener's binaural impulse response (left, right) as a (2, samples) array at .sample_rate, "
+           "through the SOFA HRTF set `hrtf` (default: Debian's MIT KEMAR set). The samples of "
+           "`diffray ir --format binaural --seed SEED`.")
       .def("metrics", &metrics, py::arg("listener") = 0,
            "ISO 3382-1 figures from the listener's energy histogram, those of `diffray ir --json` (bands): "
            "{band Hz: {T20, T30, EDT (s), C50, C80 (dB), D50, Ts (s), decay_range_db, g_db (strength G), se: {figure: standard "

@@ -41,6 +41,20 @@ def test_arrays(sim):
     assert list(m) == sim.bands and set(m[1000]) >= {"T20", "T30", "EDT", "C50", "C80", "D50", "Ts"}
 
 
+def test_spatial_responses(sim):
+    # AmbiX: (N+1)^2 channels whose W is the omni response sample for sample; binaural: two ears of its length.
+    amb = sim.ambisonic_response(0, order=2)
+    ir = sim.impulse_response(0)
+    assert amb.shape == (9, ir.size)
+    assert np.array_equal(amb[0], ir)
+    ears = sim.binaural_response(0)
+    assert ears.shape == (2, ir.size) and np.all(np.isfinite(ears)) and np.any(ears[0] != ears[1])
+    with pytest.raises(ValueError, match="order"):
+        sim.ambisonic_response(0, order=4)
+    with pytest.raises(ValueError, match="cannot read"):
+        sim.binaural_response(0, hrtf="/nonexistent.sofa")
+
+
 def test_unmeasurable_is_none(sim):
     # 0.3 s of a room whose T30 is over a second: the decay does not fall 35 dB (+10 past the noise).
     assert sim.metrics(0)[1000]["T30"] is None
