@@ -8,6 +8,8 @@
 #include <cmath>
 #include <complex>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "diffray/core/error.h"
@@ -112,6 +114,17 @@ TEST(IrBinaural, BadSofaFilesRefusedInOneLine) {
   refuses(dir.file("missing.sofa"), "cannot read");
   std::ofstream(dir.file("text.sofa")) << "not HDF5 at all\n";
   refuses(dir.file("text.sofa"), "not a SOFA file");
+  // A SOFA file of another convention: the KEMAR set with its SOFAConventions attribute renamed in place
+  // (same length, so the HDF5 structure stays valid): libmysofa reads it, its check refuses it.
+  std::ifstream in(spatial::Hrtf::defaultPath(), std::ios::binary);
+  if (!in) GTEST_SKIP() << "the default set is not installed (libmysofa1)";
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "SimpleFreeFieldHRIR", to = "SimpleFreeFieldHRTF";
+  const std::size_t at = bytes.find(from);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, from.size(), to);
+  std::ofstream(dir.file("other.sofa"), std::ios::binary) << bytes;
+  refuses(dir.file("other.sofa"), "not an HRTF set");
 }
 
 }  // namespace
