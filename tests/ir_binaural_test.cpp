@@ -9,6 +9,7 @@
 #include <complex>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -96,8 +97,17 @@ TEST(IrBinaural, HrtfSetIsNormalisedToTheDiffuseField) {
     for (int side = 0; side < 2; ++side)
       for (int k = 0; k < h.taps(); ++k) energy += static_cast<double>(h.ear(i, side)[k]) * h.ear(i, side)[k];
   EXPECT_NEAR(energy / (2.0 * h.directions()), 1.0, 1e-4);
-  // nearest(): a grid direction finds itself.
+  // nearest() against a brute-force search: a grid direction finds itself, and 5000 random directions the
+  // measurement of largest cosine.
   for (int i = 0; i < h.directions(); i += 37) EXPECT_EQ(h.nearest(h.direction(i)), i);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  for (int t = 0; t < 5000; ++t) {
+    const Vec3 d = Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+    double best = -2.0;
+    for (int i = 0; i < h.directions(); ++i) best = std::max(best, h.direction(i).dot(d));
+    ASSERT_DOUBLE_EQ(h.direction(h.nearest(d)).dot(d), best) << t;
+  }
 }
 
 TEST(IrBinaural, BadSofaFilesRefusedInOneLine) {

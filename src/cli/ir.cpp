@@ -283,11 +283,13 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                                                       sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l),
                                                       opts->order, li.forward, li.left, li.up));
         channels.push_back(spatial_irs.back()[0]);
+      } else if (binaural) {  // the omni channel comes with it
+        channels.emplace_back();
+        spatial_irs.push_back(ir::synthesizeBinaural(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                     sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf,
+                                                     li.forward, li.left, li.up, ir::Phasing::Orthogonal,
+                                                     &channels.back()));
       } else {
-        if (binaural)
-          spatial_irs.push_back(ir::synthesizeBinaural(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                                       sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf,
-                                                       li.forward, li.left, li.up));
         channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
                                           sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
       }

@@ -251,12 +251,14 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
                                                     std::uint64_t seed, const spatial::Hrtf& hrtf,
                                                     const core::Vec3& forward, const core::Vec3& left,
-                                                    const core::Vec3& up, Phasing phasing) {
+                                                    const core::Vec3& up, Phasing phasing, std::vector<double>* omni) {
   if (hrtf.sampleRateHz() != sample_rate_hz)
     throw core::InputError("--hrtf", "the HRTF set was prepared for " + std::to_string(hrtf.sampleRateHz()) +
                                          " Hz, the response is at " + std::to_string(sample_rate_hz) + " Hz");
   detail::SynthesisPlan plan;
-  detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing, &plan);
+  std::vector<double> w_channel =
+      detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing, &plan);
+  if (omni) *omni = std::move(w_channel);
   const BandFilter filter(response.bands, sample_rate_hz);
   RealFft fft(plan.fft_size);
   const int m = fft.size(), nb = response.bands.size();
@@ -266,7 +268,9 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
   // Adds h (the HRIR) at sample s, scaled, into x (cut at the response's end).
   const auto place = [&](std::vector<double>& x, long s, const float* h, double scale) {
-    for (std::size_t k = 0; k < taps && static_cast<std::size_t>(s) + k < n; ++k) x[static_cast<std::size_t>(s) + k] += scale * h[k];
+    const std::size_t from = static_cast<std::size_t>(s), count = std::min(taps, n - from);
+    double* to = x.data() + from;
+    for (std::size_t k = 0; k < count; ++k) to[k] += scale * static_cast<double>(h[k]);
   };
   // Arrivals: each band's pulse c·W_b·e^{−2πifτ} through the HRIR of the arrival's direction, at the sample
   // nearest its delay: per band and ear, the HRIRs placed with weights Re(c) and Im(c) in two sequences X_R,

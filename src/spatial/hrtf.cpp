@@ -108,15 +108,51 @@ Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
   for (const auto& ir : irs)
     for (int side = 0; side < 2; ++side)
       for (int k = 0; k < h.taps_; ++k) h.taps_data_.push_back(ir[2 * static_cast<std::size_t>(k) + side] * scale);
+  h.index();
   return h;
 }
 
+namespace {
+
+constexpr int kAzCells = 180, kElCells = 90;  // 2° cells
+
+int cellOf(const core::Vec3& d) {
+  const double az = std::atan2(d.y(), d.x()), el = std::asin(std::max(-1.0, std::min(1.0, d.z() / d.norm())));
+  const int a = std::min(kAzCells - 1, std::max(0, static_cast<int>((az + core::kPi) / core::kTwoPi * kAzCells)));
+  const int e = std::min(kElCells - 1, std::max(0, static_cast<int>((el + 0.5 * core::kPi) / core::kPi * kElCells)));
+  return e * kAzCells + a;
+}
+
+}  // namespace
+
+void Hrtf::index() {
+  const double radius = 1.5 * core::kPi / 180.0;  // a 2° × 2° cell's angular radius is at most √2°
+  cell_start_.assign(1, 0);
+  candidates_.clear();
+  std::vector<double> angle(dirs_.size());
+  for (int e = 0; e < kElCells; ++e)
+    for (int a = 0; a < kAzCells; ++a) {
+      const double az = -core::kPi + (a + 0.5) * core::kTwoPi / kAzCells, el = -0.5 * core::kPi + (e + 0.5) * core::kPi / kElCells;
+      const core::Vec3 c(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+      double nearest = core::kPi;
+      for (std::size_t i = 0; i < dirs_.size(); ++i) {
+        angle[i] = std::acos(std::max(-1.0, std::min(1.0, dirs_[i].dot(c))));
+        nearest = std::min(nearest, angle[i]);
+      }
+      for (std::size_t i = 0; i < dirs_.size(); ++i)
+        if (angle[i] <= nearest + 2.0 * radius + 1e-9) candidates_.push_back(static_cast<int>(i));
+      cell_start_.push_back(static_cast<int>(candidates_.size()));
+    }
+}
+
 int Hrtf::nearest(const core::Vec3& d) const {
-  int best = 0;
+  const int cell = cellOf(d);
+  int best = candidates_[static_cast<std::size_t>(cell_start_[static_cast<std::size_t>(cell)])];
   double best_cos = -2.0;
-  for (std::size_t i = 0; i < dirs_.size(); ++i) {
-    const double c = dirs_[i].dot(d);
-    if (c > best_cos) best_cos = c, best = static_cast<int>(i);
+  for (int k = cell_start_[static_cast<std::size_t>(cell)]; k < cell_start_[static_cast<std::size_t>(cell) + 1]; ++k) {
+    const int i = candidates_[static_cast<std::size_t>(k)];
+    const double c = dirs_[static_cast<std::size_t>(i)].dot(d);
+    if (c > best_cos) best_cos = c, best = i;
   }
   return best;
 }

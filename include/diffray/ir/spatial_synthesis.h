@@ -53,11 +53,13 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
 /// Pätynen, Kuusinen & Lokki, J. Audio Eng. Soc. 61(1/2), 2013). The HRIRs' diffuse-field normalisation
 /// (spatial/hrtf.h) keeps each ear's energy equal to W's on average in a diffuse field. Throws
 /// core::InputError as synthesize() does, and for an HRTF set prepared at another rate. `phasing` as
-/// synthesize()'s (Coherent for responses a crossfade moves between: the closing door).
+/// synthesize()'s (Coherent for responses a crossfade moves between: the closing door). With `omni` given,
+/// it receives the omnidirectional response synthesize() makes with the same arguments (drawn anyway).
 std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& response, double sample_rate_hz,
                                                     double length_s, double volume_m3, double speed_of_sound_m_s,
                                                     std::uint64_t seed, const spatial::Hrtf& hrtf,
                                                     const core::Vec3& forward, const core::Vec3& left,
-                                                    const core::Vec3& up, Phasing phasing = Phasing::Orthogonal);
+                                                    const core::Vec3& up, Phasing phasing = Phasing::Orthogonal,
+                                                    std::vector<double>* omni = nullptr);
 
 }  // namespace diffray::ir

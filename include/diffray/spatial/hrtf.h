@@ -11,7 +11,10 @@
 // its energy per ear on average (the grid's directions weighted alike). Directions are unit vectors in the
 // head frame SOFA uses, x forward, y left, z up (the frame of diffray's listeners); nearest() picks the
 // measured direction of largest cosine (no interpolation: measured sets are a few degrees apart, and
-// interpolating HRIRs in time smears their interaural delay).
+// interpolating HRIRs in time smears their interaural delay), found exactly through a 2° azimuth ×
+// elevation table holding, per cell, every measurement that can be nearest to a direction in it (those within
+// the angle of the one nearest the cell's centre plus twice the cell's angular radius, by the triangle
+// inequality).
 // Units: the HRIRs are dimensionless filter taps at sampleRateHz(). Thread-safety: immutable after load();
 // share freely.
 #include <string>
@@ -50,6 +53,9 @@ class Hrtf {
   int taps_ = 0;
   std::vector<core::Vec3> dirs_;
   std::vector<float> taps_data_;  ///< [direction][ear][tap]
+  std::vector<int> cell_start_;   ///< [elevation cell × azimuth cell + 1]: where its candidates start
+  std::vector<int> candidates_;   ///< the cells' candidate measurements, one run per cell
+  void index();
 };
 
 }  // namespace diffray::spatial
