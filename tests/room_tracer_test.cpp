@@ -290,6 +290,10 @@ TEST(RoomTracer, HistogramsTooLargeForMemoryAreRefusedBeforeTracing) {
   // By hand: 10 s in 1 ms bins is 10,000 bins; 0.0105 s in 1 ms bins needs 11 (the last one partial).
   EXPECT_EQ(dt::histogramBins(10.0, 1e-3, 8, 2), 10000);
   EXPECT_EQ(dt::histogramBins(0.0105, 1e-3, 8, 2), 11);
+  // 100 s in 0.1 ms bins × 8 bands × 1 listener = 8e6 cells: within the 1e7 cap, but not when the direction
+  // tallies (3 doubles per cell beside the histogram's 4) count too: 8e6 × 7/4 = 1.4e7.
+  EXPECT_EQ(dt::histogramBins(100.0, 1e-4, 8, 1), 1000000);
+  EXPECT_THROW(dt::histogramBins(100.0, 1e-4, 8, 1, true), diffray::core::InputError);
   // 600 s in 0.1 ms bins × 8 bands = 4.8e7 cells: the scene file accepts it, the machine's memory did not.
   dr::Room room = boxRoom(Vec3(4, 3, 2.5), 0.2, 0.0);
   room.sources.push_back({"S", Vec3(1, 1, 1), 1.0, {}});

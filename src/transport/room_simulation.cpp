@@ -206,7 +206,7 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     sim.length_s = std::min(room.output.max_length_s, decay_s + 0.05);
   }
   // Refuse histograms too large for memory now, not after the image sources.
-  histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size());
+  histogramBins(sim.length_s, room.output.histogram_bin_s, nb, room.listeners.size(), options.directions);
   for (std::size_t l = 0; l < room.listeners.size(); ++l) {
     ir::EnergyResponse r;
     r.bands = room.bands;

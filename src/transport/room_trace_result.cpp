@@ -33,16 +33,18 @@ void RoomTraceResult::merge(const RoomTraceResult& o) {
   evanescent += o.evanescent;
 }
 
-int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners) {
+int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners, bool directions) {
   core::requirePositive("length", length_s);
   core::requirePositive("histogram bin", bin_s);
   const double bins = std::max(1.0, std::ceil(length_s / bin_s));
-  const double cells = bins * bands * static_cast<double>(std::max<std::size_t>(listeners, 1));
+  const double cells =
+      bins * bands * static_cast<double>(std::max<std::size_t>(listeners, 1)) * (directions ? 7.0 / 4.0 : 1.0);
   if (!(cells <= kMaxHistogramCells)) {
     std::ostringstream why;
     why.precision(3);
     why << "an IR of " << length_s << " s in bins of " << bin_s << " s for " << bands << " bands and " << listeners
-        << " listener(s) needs " << cells << " histogram cells, more than the limit of " << kMaxHistogramCells
+        << " listener(s) needs " << cells << " histogram cells" << (directions ? " (with the direction tallies)" : "")
+        << ", more than the limit of " << kMaxHistogramCells
         << "; use wider bins or a shorter IR (ir_length_s, max_length_s, --length)";
     throw core::InputError("output.histogram_bin_s", why.str());
   }

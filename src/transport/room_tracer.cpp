@@ -362,7 +362,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
     lp.r2_plus_margin[lane] = r * r + 1e-9 * (e * e + r * r);
   }
   tr.pair_count = static_cast<int>(tr.listener_pairs.size());
-  tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size());
+  tr.bins = histogramBins(options.length_s, options.bin_s, tr.bands, room.listeners.size(), options.directions);
   const room::Source& src = room.sources[source_index];
   tr.ray_energy = 4.0 * core::kPi * src.power_w / static_cast<double>(options.rays);
   tr.max_path_m = options.length_s * options.speed_of_sound_m_s;

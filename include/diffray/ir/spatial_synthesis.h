@@ -1,10 +1,8 @@
 #pragma once
 // Ambisonic and binaural impulse responses synthesized from an EnergyResponse that recorded directions
-// (transport::RoomSimulationOptions::directions), sharing W's (the omnidirectional response's) events.
+// (transport::RoomSimulationOptions::directions), from the events of W, the omnidirectional response.
 //
-// Ambisonic impulse responses (AmbiX: ACN channel order, SN3D normalisation, spatial/spherical_harmonics.h)
-// synthesized from an EnergyResponse that recorded directions (transport::RoomSimulationOptions::directions).
-//
+// Ambisonics (AmbiX: ACN channel order, SN3D normalisation, spatial/spherical_harmonics.h).
 // Contract. Channel 0 (W) is the omnidirectional response of ir::synthesize with the same arguments, sample
 // for sample; channel c holds the same events, each weighted by Y_c of its direction in the listener's
 // frame (x forward, y left, z up), so every channel shares W's time structure and, per band, the energy
@@ -18,8 +16,10 @@
 //    uniformly over the sphere, so that the expected energy vector of the Diracs is r_E·u, the traced one.
 //    r_E and u are read from the recorded directions summed over the bins within ±max(2 bins, 10 % of the
 //    time) of the Dirac's bin (few rays reach a listener in one late bin: a sum over one bin would read
-//    r_E near 1 from a handful of rays). Each band's weighted Diracs go through the band filter, the gains
-//    and the turn W's synthesis solved for that band, so W's band energies and phases carry over.
+//    r_E near 1 from a handful of rays). Directional Diracs keep W's gains (rescaled per window for the
+//    share of W's interference they keep), diffuse ones take one gain per window, so that each channel
+//    holds its expected share of W's band energy (spatial_synthesis.cpp, tracedOutputs); every band part
+//    is then filtered and turned as W's.
 //  Without recorded directions the traced part is diffuse (r_E = 0). Reproducible from `seed` (its own
 //  stream for the directions). Thread-safe (no shared state; FFTW planning is serialised).
 #include <cstdint>

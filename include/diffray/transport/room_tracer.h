@@ -121,11 +121,13 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
 /// keeps about ten accumulators alive at once: 1e7 cells ≈ 3 GB at the peak). The batches (RoomTraceOptions::
 /// batches) add one double per cell for each batch a live accumulator holds: an accumulator holds those of
 /// its own chunks, so about threads × (batches + log2(chunks)) at the peak (two-rooms at 1M rays: 40 → 54 MB;
-/// at the cap with 2 threads ≈ 3.7 GB more). Throws InputError naming
+/// at the cap with 2 threads ≈ 3.7 GB more). Recording directions (RoomTraceOptions::directions) adds 3
+/// doubles per cell to every accumulator: `directions` counts each cell 7/4 times then, to keep the same
+/// bound on memory. Throws InputError naming
 /// output.histogram_bin_s otherwise: before the cap a 600 s IR in 0.1 ms bins, which the scene file accepts,
 /// ran the machine out of memory.
 inline constexpr double kMaxHistogramCells = 1e7;
-int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners);
+int histogramBins(double length_s, double bin_s, int bands, std::size_t listeners, bool directions = false);
 
 /// The normalised power pattern of a first-order source, D(θ) = (a + (1 − a)cosθ)² / (a² + (1 − a)²/3),
 /// whose mean over the sphere is 1; `cos_theta` is the cosine to the source's axis.
