@@ -142,13 +142,20 @@ bands: "octave" or "third-octave". output: the scene file's "output" fields (sam
            py::arg("position"), py::arg("power_w") = 1.0, py::arg("directivity") = "omni",
            py::arg("name") = py::none(), "Adds a point source at `position` (m); named S1, S2, ... unless `name`.")
       .def("add_listener",
-           [](SceneRoom& r, const std::vector<double>& position, double radius, const py::object& name) {
+           [](SceneRoom& r, const std::vector<double>& position, double radius, const py::object& name,
+              const py::object& look_at, double yaw, double pitch, double roll) {
              nlohmann::json e{{"position", position}, {"radius_m", radius}};
              if (!name.is_none()) e["name"] = name.cast<std::string>();
+             if (!look_at.is_none()) e["look_at"] = look_at.cast<std::vector<double>>();
+             if (yaw != 0.0 || pitch != 0.0 || roll != 0.0)
+               e["orientation"] = {{"yaw_deg", yaw}, {"pitch_deg", pitch}, {"roll_deg", roll}};
              r.append("listeners", e);
            },
-           py::arg("position"), py::arg("radius") = 0.1, py::arg("name") = py::none(),
-           "Adds a spherical listener at `position` (m) of `radius` (m); named R1, R2, ... unless `name`.")
+           py::arg("position"), py::arg("radius") = 0.1, py::arg("name") = py::none(), py::arg("look_at") = py::none(),
+           py::arg("yaw") = 0.0, py::arg("pitch") = 0.0, py::arg("roll") = 0.0,
+           "Adds a spherical listener at `position` (m) of `radius` (m); named R1, R2, ... unless `name`. It faces "
+           "+x with +z up, or the point `look_at`, or turns by `yaw`, `pitch`, `roll` (degrees; the scene file's "
+           "\"orientation\", rooms/README.md): the frame of its spatial responses.")
       .def_property_readonly("name", [](const SceneRoom& r) { return r.room().name; })
       .def_property_readonly("bands", [](const SceneRoom& r) {
         py::list out;
@@ -175,7 +182,8 @@ bands: "octave" or "third-octave". output: the scene file's "output" fields (sam
         py::list out;
         for (const auto& l : r.room().listeners)
           out.append(py::dict(py::arg("name") = l.name, py::arg("position") = xyz(l.position_m),
-                              py::arg("radius") = l.radius_m));
+                              py::arg("radius") = l.radius_m, py::arg("forward") = xyz(l.forward),
+                              py::arg("up") = xyz(l.up)));
         return out;
       })
       .def_property_readonly("sample_rate", [](const SceneRoom& r) { return r.room().output.sample_rate_hz; }, "Hz")

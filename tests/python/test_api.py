@@ -31,6 +31,22 @@ def test_room_reads_back():
     assert "concrete-rough" in diffray.material_names()
 
 
+def test_listener_orientation():
+    # As the scene file's keys: the default faces +x; look_at faces the point; yaw 90 faces +y; bad ones refused.
+    room = small_room()
+    room.add_listener([2, 2, 1.2], look_at=[2, 3, 1.2], name="north")
+    room.add_listener([2, 2, 1.2], yaw=90, pitch=30, name="turned")
+    first, north, turned = room.listeners[0], room.listeners[2], room.listeners[3]
+    assert first["forward"] == pytest.approx([1, 0, 0]) and first["up"] == pytest.approx([0, 0, 1])
+    assert north["forward"] == pytest.approx([0, 1, 0], abs=1e-12)
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    assert turned["forward"] == pytest.approx([0, c, s], abs=1e-12)
+    bad = small_room()
+    with pytest.raises(ValueError, match="pitch_deg"):
+        bad.add_listener([2, 2, 1.2], pitch=120)
+        bad.listeners
+
+
 def test_arrays(sim):
     h = sim.histogram(1)
     assert h.dtype == np.float64 and h.shape == (8, round(sim.length / sim.bin_width))
