@@ -132,9 +132,7 @@ std::vector<std::vector<float>> decodedIr(std::vector<std::vector<float>> channe
   spatial::ambisonicOrderOf(static_cast<int>(channels.size()), o.ir);
   if (!layout.empty()) return spatial::decodeToLayout(channels, layout);
   const spatial::Hrtf hrtf = spatial::Hrtf::load(o.hrtf, rate_hz);
-  std::cout << "decoding the AmbiX IR to binaural through " << hrtf.path() << " (" << hrtf.directions() << " directions"
-            << (hrtf.fileRateHz() != rate_hz ? ", resampled to " + std::to_string(static_cast<long>(rate_hz)) + " Hz)" : ")")
-            << "\n";
+  std::cout << "decoding the AmbiX IR to binaural through " << describeHrtf(hrtf) << "\n";
   return spatial::decodeToBinaural(channels, hrtf);
 }
 
@@ -185,10 +183,7 @@ Runner addAuralizeCommand(CLI::App& app, CommonOptions& /*common*/) {
   sub->add_option("--decode", o->playback.decode,
                   "an AmbiX IR (diffray ir --format ambix) decoded to binaural (two ears, through --hrtf) or to "
                   "loudspeakers AZ:EL,AZ:EL,... in degrees (mode matching; one output channel each)");
-  sub->add_option("--hrtf", o->playback.hrtf,
-                  "SOFA HRTF set of --decode binaural (default: Debian's MIT KEMAR set, " +
-                      std::string(spatial::Hrtf::defaultPath()) + ")")
-      ->check(inputPathValidator());
+  addHrtfOption(sub, o->playback.hrtf, "--decode binaural");
   sub->add_flag("--play", o->play, "play the result in real time on an audio device (PortAudio)");
   sub->add_option("--device", o->playback.device, "with --play: output device, by index or name substring "
                                                    "(default: the system's default output)");

@@ -158,10 +158,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--format", opts->format,
                   "omni (default): one channel per listener; binaural: two per listener (left, right) through an HRTF")
       ->check(CLI::IsMember({"omni", "binaural"}));
-  sub->add_option("--hrtf", opts->hrtf,
-                  "SOFA HRTF set of --format binaural (default: Debian's MIT KEMAR set, " +
-                      std::string(spatial::Hrtf::defaultPath()) + ")")
-      ->check(inputPathValidator());
+  addHrtfOption(sub, opts->hrtf, "--format binaural");
   addRaysOption(sub, opts->rays, "rays per source and step (default: the room file's output.rays)");
   CLI::Option* seed_option = sub->add_option("--seed", common.seed, "random seed (default: the room file's)")
                                   ->transform(seedValidator());
@@ -216,11 +213,7 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     if (!opts->hrtf.empty() && opts->format != "binaural") throw core::InputError("--hrtf", "is for --format binaural");
     if (opts->format == "binaural") {
       hrtf = spatial::Hrtf::load(opts->hrtf, synth_fs);
-      std::cerr << "diffray: info: HRTF " << hrtf->path() << " (" << hrtf->directions() << " directions"
-                << (hrtf->fileRateHz() != synth_fs ? ", resampled from " + room::formatNumber(hrtf->fileRateHz()) +
-                                                         " to " + room::formatNumber(synth_fs) + " Hz)"
-                                                   : ")")
-                << "\n";
+      std::cerr << "diffray: info: HRTF " << describeHrtf(*hrtf) << "\n";
     }
     // The crossfade's key frames, before the (long) tracing: too many steps over a short close coincide.
     const std::vector<long> keys = door::keyFrames(schedule, fs, 2.0 * d.half_x_m, start_s, end_s);

@@ -191,10 +191,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
       ->check(CLI::IsMember({"omni", "ambix", "binaural"}));
   sub->add_option("--order", opts->order, "Ambisonic order of --format ambix: 1, 2 or 3 (default 1)")
       ->transform(wholeNumberValidator(1, 3));
-  sub->add_option("--hrtf", opts->hrtf,
-                  "SOFA HRTF set of --format binaural (default: Debian's MIT KEMAR set, " +
-                      std::string(spatial::Hrtf::defaultPath()) + ")")
-      ->check(inputPathValidator());
+  addHrtfOption(sub, opts->hrtf, "--format binaural");
 
   return [opts, &common, seed_option]() {
     const auto t_start = std::chrono::steady_clock::now();
@@ -230,12 +227,7 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     std::optional<spatial::Hrtf> hrtf;
     if (binaural) {
       hrtf = spatial::Hrtf::load(opts->hrtf, room.output.sample_rate_hz);
-      std::cerr << "diffray: info: HRTF " << hrtf->path() << " (" << hrtf->directions() << " directions"
-                << (hrtf->fileRateHz() != hrtf->sampleRateHz()
-                        ? ", resampled from " + room::formatNumber(hrtf->fileRateHz()) + " to " +
-                              room::formatNumber(hrtf->sampleRateHz()) + " Hz)"
-                        : ")")
-                << "\n";
+      std::cerr << "diffray: info: HRTF " << describeHrtf(*hrtf) << "\n";
     }
     checkPlotOption("--plot", opts->plot);
     checkPlotOption("--plot-directions", opts->plot_directions);

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "diffray/cli/commands.h"
+#include "diffray/room/json_fields.h"
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 
@@ -261,6 +262,21 @@ void clampThreads(CommonOptions& common) {
               << " cores here: using " << cores << "\n";
     common.threads = cores;
   }
+}
+
+void addHrtfOption(CLI::App* sub, std::string& path, const std::string& what) {
+  sub->add_option("--hrtf", path,
+                  "SOFA HRTF set of " + what + " (default: Debian's MIT KEMAR set, " +
+                      std::string(spatial::Hrtf::defaultPath()) + ")")
+      ->check(inputPathValidator());
+}
+
+std::string describeHrtf(const spatial::Hrtf& hrtf) {
+  std::string out = hrtf.path() + " (" + std::to_string(hrtf.directions()) + " directions";
+  if (hrtf.fileRateHz() != hrtf.sampleRateHz())
+    out += ", resampled from " + room::formatNumber(hrtf.fileRateHz()) + " to " + room::formatNumber(hrtf.sampleRateHz()) +
+           " Hz";
+  return out + ")";
 }
 
 }  // namespace diffray::cli

@@ -277,20 +277,26 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}).
   std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
   std::vector<std::complex<double>> spectrum_r, spectrum_i;
+  // Each arrival's HRIR pair and sample, once (−1: beyond the response).
+  const std::size_t arrivals = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
+  std::vector<int> measured(arrivals, 0);
+  std::vector<long> sample(arrivals, -1);
+  for (std::size_t a = 0; a < arrivals; ++a) {
+    const Arrival& arrival = response.arrivals[a];
+    measured[a] = hrtf.nearest(arrival.direction.norm() > 0.0 ? local(arrival.direction) : core::Vec3(1, 0, 0));
+    const long s = std::lround(arrival.delay_s * sample_rate_hz);
+    if (s >= 0 && static_cast<std::size_t>(s) < n) sample[a] = s;
+  }
   for (int b = 0; b < nb; ++b) {
     for (int side = 0; side < 2; ++side) {
       std::vector<double> xr(n, 0.0), xi(n, 0.0);
       bool any = false;
-      for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
-        const Arrival& arrival = response.arrivals[a];
+      for (std::size_t a = 0; a < arrivals; ++a) {
         const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
-        if (c == std::complex<double>(0.0, 0.0)) continue;
-        const core::Vec3 d = arrival.direction.norm() > 0.0 ? local(arrival.direction) : core::Vec3(1, 0, 0);
-        const long s = std::lround(arrival.delay_s * sample_rate_hz);
-        if (s < 0 || static_cast<std::size_t>(s) >= n) continue;
-        const float* h = hrtf.ear(hrtf.nearest(d), side);
-        place(xr, s, h, c.real());
-        place(xi, s, h, c.imag());
+        if (c == std::complex<double>(0.0, 0.0) || sample[a] < 0) continue;
+        const float* h = hrtf.ear(measured[a], side);
+        place(xr, sample[a], h, c.real());
+        place(xi, sample[a], h, c.imag());
         any = true;
       }
       if (!any) continue;

@@ -13,6 +13,7 @@
 #include "diffray/core/error.h"
 #include "diffray/core/number.h"
 #include "diffray/room/room.h"
+#include "diffray/spatial/hrtf.h"
 
 namespace diffray::reference {
 struct WavePlan;
@@ -86,6 +87,12 @@ void addThreadsOption(CLI::App* sub, int& threads);
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order);
 /// `--wbsdf-continuation portal|wigner`: how a ray goes on past an opening (RoomSimulationOptions::portal).
 void addContinuationOption(CLI::App* sub, bool& portal);
+/// `--hrtf FILE.sofa`: the SOFA set of a binaural output (`what`: the option that asks for one), an existing
+/// file; empty selects Debian's MIT KEMAR set (spatial::Hrtf::defaultPath).
+void addHrtfOption(CLI::App* sub, std::string& path, const std::string& what);
+/// "PATH (N directions)" or "PATH (N directions, resampled from A to B Hz)": the HRTF set a run uses, for
+/// its one info line.
+std::string describeHrtf(const spatial::Hrtf& hrtf);
 
 /// Checks an output path before any work: its extension is `ext` (".wav"; not checked when empty) and its folder
 /// exists and is writable, and the path is not a folder. Throws core::InputError naming the path.
