@@ -10,6 +10,9 @@
 //                randomised quasi-Monte Carlo; the fitted slope of log(error) vs log(rays) (-0.5 = 1/√N).
 //   fdtd:        the FDTD wave reference's cell updates per second on two-rooms' 500 Hz grid beside a
 //                STREAM-like triad's bytes/s over arrays of the grid's size (fdtd_bench.cpp).
+//   btm:         the BTM edge-diffraction reference on the 4 × 2 m plate on ground, second order, 96
+//                frequencies per octave 100 Hz–4 kHz at four receivers, beside the same field one frequency
+//                at a time at three of them (btm_bench.cpp).
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
 //                block's duration (realtime_bench.cpp).
 //   render-is:   the light tracer's importance-sampled WBSDF shifts vs uniform shifts at equal wall time,
@@ -24,6 +27,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "btm_bench.h"
 #include "fdtd_bench.h"
 #include "realtime_bench.h"
 #include "render_is_bench.h"
@@ -288,6 +292,8 @@ int main(int argc, char** argv) {
     if (which == "all" || which == "fdtd")  // `diffray_bench fdtd [STEPS]`
       bench::benchFdtd(room::loadRoom(std::string(DIFFRAY_BENCH_ROOMS) + "/two-rooms.json"), "two-rooms",
                        argc > 2 && which == "fdtd" ? std::stoi(argv[2]) : 400);
+    if (which == "all" || which == "btm")  // `diffray_bench btm [PER_OCTAVE]`
+      bench::benchBtm(argc > 2 && which == "btm" ? std::stoi(argv[2]) : 96);
     if (which == "all" || which == "render-is") {
       bench::benchRenderIs(20'000'000);
       bench::benchRenderIsScene(std::string(DIFFRAY_BENCH_ROOMS) + "/light/cd.json", "cd", 10'000'000);

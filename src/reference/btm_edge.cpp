@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "diffray/core/error.h"
 #include "diffray/reference/btm_kernel.h"
@@ -35,25 +36,43 @@ double requireWedge(double wavenumber, double wedge_rad) {
   return kPi / wedge_rad;
 }
 
+// The integrand's geometry along an edge: the apex (the point of least path), the scale of the
+// integration and the first panel (btm_kernel.h).
+struct EdgeGeometry {
+  double apex, scale, first_panel;
+  EdgeGeometry(const BtmBeta& beta, const CylindricalPoint& s, const CylindricalPoint& r)
+      : apex(s.z_m + (r.z_m - s.z_m) * s.rho_m / (s.rho_m + r.rho_m)),
+        scale(s.rho_m + r.rho_m + std::abs(r.z_m - s.z_m)),
+        first_panel(beta.firstPanel(s.rho_m, r.rho_m, scale)) {}
+};
+
+// The graded rule's nodes over [lo, hi] as (path m + l, w·β/(m·l)): the integral without the factor −ν/4π.
+void appendNodes(const BtmBeta& beta, const EdgeGeometry& geo, const CylindricalPoint& s, const CylindricalPoint& r,
+                 double lo, double hi, double wavelength, std::vector<BtmNode>* nodes) {
+  const double rs = s.rho_m, rr = r.rho_m, zs = s.z_m, zr = r.z_m;
+  btmGradedNodes(geo.apex, lo, hi, geo.scale, wavelength, geo.first_panel, [&](double z, double w) {
+    const double a = z - zs, b = z - zr, m = std::hypot(rs, a), l = std::hypot(rr, b);
+    nodes->push_back({m + l, w * beta(rs, rr, a, b, m, l) / (m * l)});
+  });
+}
+
 // ∫ over the edge of β·e^{−ik(m+l)}/(m·l), without the factor −ν/4π. Infinite ends are integrated to 60
 // scales from the apex and closed with the first term of integration by parts: ∫_U^∞ A·e^{−ikΦ} ≈
 // A(U)·e^{−ikΦ(U)}/(ik·Φ'(U)), Φ' the slope of m + l away from the apex.
 Complex edgeIntegral(double k, double nu, const BtmWedge& wedge, const CylindricalPoint& s, const CylindricalPoint& r) {
   const BtmBeta beta(nu, s.phi_rad, r.phi_rad);
-  const double rs = s.rho_m, rr = r.rho_m, zs = s.z_m, zr = r.z_m;
-  const auto g = [&](double z) {
-    const double a = z - zs, b = z - zr, m = std::hypot(rs, a), l = std::hypot(rr, b);
-    return std::polar(beta(rs, rr, a, b, m, l) / (m * l), -k * (m + l));
-  };
-  const double apex = zs + (zr - zs) * rs / (rs + rr);
-  const double scale = rs + rr + std::abs(zr - zs);
-  const double reach = 60.0 * scale;
-  const double lo = std::max(wedge.z_start_m, std::min(apex, wedge.z_end_m) - reach);
-  const double hi = std::min(wedge.z_end_m, std::max(apex, wedge.z_start_m) + reach);
-  Complex sum = btmGradedIntegral(g, apex, lo, hi, scale, 2.0 * kPi / k, beta.firstPanel(rs, rr, scale));
+  const EdgeGeometry geo(beta, s, r);
+  const double reach = 60.0 * geo.scale;
+  const double lo = std::max(wedge.z_start_m, std::min(geo.apex, wedge.z_end_m) - reach);
+  const double hi = std::min(wedge.z_end_m, std::max(geo.apex, wedge.z_start_m) + reach);
+  std::vector<BtmNode> nodes;
+  appendNodes(beta, geo, s, r, lo, hi, 2.0 * kPi / k, &nodes);
+  Complex sum(0.0, 0.0);
+  for (const BtmNode& q : nodes) sum += std::polar(q.amplitude, -k * q.path_m);
   const auto tail = [&](double z, double outward) {
-    const double a = z - zs, b = z - zr, m = std::hypot(rs, a), l = std::hypot(rr, b);
-    return g(z) / (Complex(0.0, 1.0) * k * (outward * (a / m + b / l)));
+    const double a = z - s.z_m, b = z - r.z_m, m = std::hypot(s.rho_m, a), l = std::hypot(r.rho_m, b);
+    const Complex g = std::polar(beta(s.rho_m, r.rho_m, a, b, m, l) / (m * l), -k * (m + l));
+    return g / (Complex(0.0, 1.0) * k * (outward * (a / m + b / l)));
   };
   if (std::isinf(wedge.z_end_m)) sum += tail(hi, 1.0);
   if (std::isinf(wedge.z_start_m)) sum += tail(lo, -1.0);
@@ -76,6 +95,20 @@ Complex btmEdgeDiffraction(double wavenumber_rad_m, const BtmWedge& wedge, const
     throw core::InputError("edge", "z_start must be below z_end");
   const Complex integral = edgeIntegral(wavenumber_rad_m, nu, wedge, source, receiver);
   return -(nu / (4.0 * kPi)) * integral;
+}
+
+void btmEdgeNodes(const BtmWedge& wedge, const CylindricalPoint& source, const CylindricalPoint& receiver,
+                  double min_wavelength_m, std::vector<BtmNode>* nodes) {
+  const double nu = requireWedge(2.0 * kPi / min_wavelength_m, wedge.exterior_angle_rad);
+  requirePoint("source", source, wedge.exterior_angle_rad);
+  requirePoint("receiver", receiver, wedge.exterior_angle_rad);
+  if (!std::isfinite(wedge.z_start_m) || !std::isfinite(wedge.z_end_m) || !(wedge.z_start_m < wedge.z_end_m))
+    throw core::InputError("edge", "must be finite, z_start below z_end");
+  const BtmBeta beta(nu, source.phi_rad, receiver.phi_rad);
+  const std::size_t first = nodes->size();
+  appendNodes(beta, EdgeGeometry(beta, source, receiver), source, receiver, wedge.z_start_m, wedge.z_end_m,
+              min_wavelength_m, nodes);
+  for (std::size_t i = first; i < nodes->size(); ++i) (*nodes)[i].amplitude *= -nu / (4.0 * kPi);
 }
 
 Complex btmInfiniteWedgeField(double wavenumber_rad_m, double exterior_angle_rad, const CylindricalPoint& source,

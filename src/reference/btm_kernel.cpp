@@ -23,18 +23,13 @@ double BtmBeta::firstPanel(double rho_s, double rho_r, double scale) const {
   return std::max(1e-2 * closest * rho_s * rho_r / (rho_s + rho_r), 1e-10 * scale);
 }
 
-double BtmBeta::operator()(double rho_s, double rho_r, double a, double b, double m, double l) const {
+double BtmBeta::coshTerm(double rho_s, double rho_r, double a, double b, double m, double l) const {
   const double num = rho_s * b + rho_r * a;
   const double t = num * num / ((m * l + rho_s * rho_r - a * b) * rho_s * rho_r);  // cosh η − 1
+  if (nu_ == 0.5) return 0.5 * t / (std::sqrt(1.0 + 0.5 * t) + 1.0);  // cosh(η/2) = √(1 + t/2)
   const double eta = std::log1p(t + std::sqrt(t * (t + 2.0)));
   const double sh = std::sinh(0.5 * nu_ * eta);
-  const double cosh_term = 2.0 * sh * sh;  // cosh(νη) − 1
-  double beta = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const double d = cosh_term + half_phi_sin2_[i];
-    if (d > 0.0) beta += sin_phi_[i] / d;
-  }
-  return beta;
+  return 2.0 * sh * sh;
 }
 
 }  // namespace diffray::reference

@@ -29,6 +29,7 @@
 // Thread-safety: pure functions; safe to call concurrently.
 #include <complex>
 #include <limits>
+#include <vector>
 
 #include "diffray/reference/half_plane_point.h"
 
@@ -45,6 +46,18 @@ struct BtmWedge {
 /// above), k the wavenumber (rad/m).
 std::complex<double> btmEdgeDiffraction(double wavenumber_rad_m, const BtmWedge& wedge,
                                         const CylindricalPoint& source, const CylindricalPoint& receiver);
+
+/// One node of a quadrature along edges: a term's value at every wavenumber k is Σ amplitude·e^{−ik·path}.
+struct BtmNode {
+  double path_m = 0.0;     ///< the path length through the node (m)
+  double amplitude = 0.0;  ///< the node's weight times the integrand's amplitude, the factor −ν/4π included
+};
+
+/// btmEdgeDiffraction of a FINITE edge as nodes, appended to `nodes`: u_d(k) = Σ a·e^{−ik·L} for every k up
+/// to 2π/min_wavelength_m (the panels are sized for the shortest wavelength, so the rule is at least as fine
+/// at every longer one). The nodes depend on the geometry only.
+void btmEdgeNodes(const BtmWedge& wedge, const CylindricalPoint& source, const CylindricalPoint& receiver,
+                  double min_wavelength_m, std::vector<BtmNode>* nodes);
 
 /// The total field around an INFINITE rigid wedge (the edge's extent in `wedge` is ignored): the direct wave
 /// where |θR − θS| < π, the image in the face θ = 0 where θS + θR < π, the image in the face θ = θ_w where

@@ -35,7 +35,22 @@ class BtmBeta {
   BtmBeta(double nu, double theta_s_rad, double theta_r_rad);
   /// β at an edge point: ρS, ρR the points' distances from the edge line, a = z − zS, b = z − zR, m and l
   /// their distances from the edge point.
-  double operator()(double rho_s, double rho_r, double a, double b, double m, double l) const;
+  double operator()(double rho_s, double rho_r, double a, double b, double m, double l) const {
+    return fromCoshTerm(coshTerm(rho_s, rho_r, a, b, m, l));
+  }
+  /// cosh(νη) − 1 at an edge point (the arguments as above): the part of β that depends on the points'
+  /// distances only, the same for every pair of azimuths. For ν = ½ (a thin plate) it is the algebraic
+  /// (t/2)/(√(1 + t/2) + 1), t = cosh η − 1, else 2·sinh²(νη/2).
+  double coshTerm(double rho_s, double rho_r, double a, double b, double m, double l) const;
+  /// β from coshTerm's value: Σ sin(νφ) / (cosh(νη) − 1 + 2sin²(νφ/2)) over the four angle terms.
+  double fromCoshTerm(double cosh_term) const {
+    double beta = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double d = cosh_term + half_phi_sin2_[i];
+      if (d > 0.0) beta += sin_phi_[i] / d;
+    }
+    return beta;
+  }
   /// A first panel (m) that resolves the integrand's narrowest feature at the apex: 1e-2 of
   /// ρSρR/(ρS + ρR) times the smallest angular distance (rad, at most 1) of a kept term to its boundary,
   /// and at least 1e-10 of `scale`.
@@ -46,36 +61,46 @@ class BtmBeta {
   double sin_phi_[4], half_phi_sin2_[4];
 };
 
+/// The nodes of the graded rule over [from, to] (metres along the edge; from < to or from > to), as in the
+/// header: visit(z, w) for each node, so that Σ w·g(z) is ∫ g from `from` to `to`. The nodes depend on the
+/// geometry and on `wavelength` only, so one set serves every wavelength at or above it.
+template <class Visit>
+void btmGradedNodes(double apex, double from, double to, double scale, double wavelength, double first_panel_m,
+                    Visit&& visit, double sign = 1.0) {
+  // Integrate outward from the end nearer the apex; a stretch that holds the apex is split there.
+  if ((apex - from) * (apex - to) < 0.0) {
+    btmGradedNodes(apex, apex, to, scale, wavelength, first_panel_m, visit, sign);
+    btmGradedNodes(apex, apex, from, scale, wavelength, first_panel_m, visit, -sign);
+    return;
+  }
+  const bool reversed = std::abs(to - apex) < std::abs(from - apex);
+  const double near_end = reversed ? to : from, far_end = reversed ? from : to;
+  const double dir = far_end > near_end ? 1.0 : -1.0;
+  // Σ over u is ∫ from near_end to far_end times dir; the requested direction may be the reverse.
+  const double orient = sign * dir * (reversed ? -1.0 : 1.0);
+  const double u0 = std::abs(near_end - apex), u_end = std::abs(far_end - apex);
+  const double h_max = std::min(0.5 * wavelength, scale);
+  const GaussRule& rule = gaussRule16();
+  double u = u0, h = std::max(first_panel_m, 1e-3 * u0);
+  while (u < u_end) {
+    const double len = std::min({h, h_max, u_end - u});
+    const double mid = u + 0.5 * len, half = 0.5 * len;
+    for (int i = 0; i < GaussRule::kNodes; ++i)
+      visit(apex + dir * (mid + half * rule.nodes[static_cast<std::size_t>(i)]),
+            orient * half * rule.weights[static_cast<std::size_t>(i)]);
+    u += len;
+    h = std::max(h, 2.0 * len);
+  }
+}
+
 /// ∫ g over [from, to] (metres along the edge; from < to or from > to) with panels graded from the apex, as
 /// in the header. g(z) returns std::complex<double>.
 template <class G>
 std::complex<double> btmGradedIntegral(const G& g, double apex, double from, double to, double scale,
                                        double wavelength, double first_panel_m) {
-  // Integrate outward from the end nearer the apex; a stretch that holds the apex is split there.
-  if ((apex - from) * (apex - to) < 0.0)
-    return btmGradedIntegral(g, apex, apex, to, scale, wavelength, first_panel_m) -
-           btmGradedIntegral(g, apex, apex, from, scale, wavelength, first_panel_m);
-  const bool reversed = std::abs(to - apex) < std::abs(from - apex);
-  const double near_end = reversed ? to : from, far_end = reversed ? from : to;
-  const double dir = far_end > near_end ? 1.0 : -1.0;
-  const double u0 = std::abs(near_end - apex), u_end = std::abs(far_end - apex);
-  const double h_max = std::min(0.5 * wavelength, scale);
-  const GaussRule& rule = gaussRule16();
   std::complex<double> sum(0.0, 0.0);
-  double u = u0, h = std::max(first_panel_m, 1e-3 * u0);
-  while (u < u_end) {
-    const double len = std::min({h, h_max, u_end - u});
-    const double mid = u + 0.5 * len, half = 0.5 * len;
-    std::complex<double> panel(0.0, 0.0);
-    for (int i = 0; i < GaussRule::kNodes; ++i)
-      panel += rule.weights[static_cast<std::size_t>(i)] * g(apex + dir * (mid + half * rule.nodes[static_cast<std::size_t>(i)]));
-    sum += panel * half;
-    u += len;
-    h = std::max(h, 2.0 * len);
-  }
-  // Σ over u is ∫ from near_end to far_end times dir; the requested direction may be the reverse.
-  const std::complex<double> near_to_far = dir * sum;
-  return reversed ? -near_to_far : near_to_far;
+  btmGradedNodes(apex, from, to, scale, wavelength, first_panel_m, [&](double z, double w) { sum += w * g(z); });
+  return sum;
 }
 
 }  // namespace diffray::reference

@@ -1,0 +1,13 @@
+#pragma once
+// The BTM reference benchmark of diffray_bench (see btm_bench.cpp).
+
+namespace diffray::bench {
+
+/// Prints {"bench":"btm", ...}: the BTM reference (reference/btm_spectrum.h) for the 4 × 2 m rigid plate
+/// standing on a rigid ground, second order, `per_octave` frequencies per octave from 100 Hz to 4 kHz at
+/// four receivers, beside the anchor: the same field evaluated one frequency at a time
+/// (btmPlateOnGroundField) at three of those frequencies, its time per frequency and the largest difference
+/// between the two.
+void benchBtm(int per_octave);
+
+}  // namespace diffray::bench
