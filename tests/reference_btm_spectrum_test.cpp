@@ -39,7 +39,7 @@ ref::BtmPlate smallPlate() {  // 1 × 0.5 m in the plane x = 0, its foot on z = 
 }
 
 TEST(ReferenceBtmSpectrum, EqualsTheFieldOneFrequencyAtATime) {
-  // The spectrum's nodes are built for its highest frequency (panels up to one of its wavelengths) and
+  // The spectrum's nodes are built for its highest frequency (panels up to two of its wavelengths) and
   // summed on a path-length grid; one frequency at a time builds them for that frequency (panels up to half
   // a wavelength) and sums them directly. Both quadratures are converged, and
   // the grid's error is ~1e-13 of Σ|a| (btm_spectrum.h): measured ≤ 1e-13 of the free field here, so

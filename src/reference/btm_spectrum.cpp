@@ -103,11 +103,12 @@ std::vector<BtmPlateField> btmPlateSpectrum(const std::vector<double>& wavenumbe
   }
   const double k_max = *std::max_element(wavenumbers_rad_m.begin(), wavenumbers_rad_m.end());
   const double wavelength = 2.0 * kPi / k_max, step = wavelength / 8.0;
-  // Panels up to one shortest wavelength h (the node builders cap panels at half the length they are given):
-  // a path's length changes at most twice as fast as the point along the edge, so e^{−ikL} turns by at most
-  // 2kh = 4π over a panel, and the 16-point rule's error term, (2kh)^32·(16!)^4/(33·(32!)^3) of the panel's
-  // integral, is below 5e-20. Measured against panels of half a wavelength: within 1e-14 of the free field.
-  const double panel_wavelength = 2.0 * wavelength;
+  // Panels up to two shortest wavelengths h (the node builders cap panels at half the length they are
+  // given): a path's length changes at most twice as fast as the point along the edge, so e^{−ikL} turns by
+  // at most 2kh = 8π over a panel, and the 16-point rule's error term, (2kh)^32·(16!)^4/(33·(32!)^3) of the
+  // panel's integral, is below 2e-10 at worst. Measured against panels of half a wavelength: within 1e-14
+  // of the free field.
+  const double panel_wavelength = 4.0 * wavelength;
 
   // Every path through the plate's edges is at least the straight distance and at most the longest way
   // from the source to a vertex, across the plate and on to the receiver (the plate is convex).

@@ -1,8 +1,8 @@
 #pragma once
 // The thin plate's field (btm_plate.h) at many frequencies at once, for band levels and fine frequency
 // grids: the quadrature nodes of every diffracted term depend on the geometry only, so they are built once,
-// for the shortest wavelength (panels graded from the apex as in btm_kernel.h, at most one shortest
-// wavelength long), and each term Σ a·e^{−ik·L} is evaluated at every wavenumber from a uniform grid in
+// for the shortest wavelength (panels graded from the apex as in btm_kernel.h, at most two shortest
+// wavelengths long), and each term Σ a·e^{−ik·L} is evaluated at every wavenumber from a uniform grid in
 // path length L.
 //
 // Each node's amplitude is spread onto the grid L_n = L₀ + n·h with a Gaussian, φ(x) = e^{−x²/4} in units
