@@ -121,13 +121,18 @@ void printTable(const room::Room& room, const compare::SceneComparison& c, bool 
         if (r.band && r.listener == il && r.model == "wbsdf" && r.band_label == band) se = r.std_error_db;
       const double w = bandLevel(c, il, "wbsdf", band), u = bandLevel(c, il, "utd", band);
       const double e = bandLevel(c, il, "exact", band), ew = bandLevel(c, il, ref_w, band);
+      // A number, or n/a where a model gives none (the exact reference above its size limit).
+      const auto num = [](int width, double v) {
+        if (std::isnan(v)) std::printf(" %*s", width, "n/a");
+        else std::printf(" %*.2f", width, v);
+      };
       std::printf("%8s", band.c_str());
       if (p.wbsdf) std::printf(" %9.2f ±%5.2f", w, se);
-      if (p.utd) std::printf(" %9.2f", u);
-      if (p.exact) std::printf(" %9.2f", e);
-      if (p.incoherent) std::printf(" %12.2f", ew);
-      if (p.wbsdf && p.exact) std::printf(" %15.2f", w - ew);
-      if (p.utd && p.exact) std::printf(" %11.2f", u - e);
+      if (p.utd) num(9, u);
+      if (p.exact) num(9, e);
+      if (p.incoherent) num(12, ew);
+      if (p.wbsdf && p.exact) num(15, w - ew);
+      if (p.utd && p.exact) num(11, u - e);
       std::printf("\n");
     }
   }

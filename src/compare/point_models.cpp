@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include "diffray/compare/btm_model.h"
 #include "diffray/core/error.h"
 #include "diffray/reference/aperture_point.h"
 #include "diffray/reference/half_plane_point.h"
@@ -62,6 +63,7 @@ class ApertureModel : public PointModel {
     }
   }
   std::string name() const override { return incoherent_ ? "exact-incoherent-floor" : "exact"; }
+  bool addsEnergies() const override { return floor_.has_value(); }
   std::vector<double> relativeEnergy(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
     const double r = (l - s).norm();
     const reference::CartesianPoint ps = frame(s, s), pl = frame(s, l);
@@ -131,6 +133,8 @@ std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double c, std:
               std::to_string(room.occluders.size());
     return nullptr;
   }
+  std::string btm_why_not;
+  if (auto btm = btmModelFor(room, c, btm_why_not, assumption)) return btm;
   const room::Occluder& o = room.occluders[0];
   if (o.x.kind == Kind::Edge && o.y.kind == Kind::Uniform) {
     assumption = "exact: Macdonald's point source on an infinite thin " +

@@ -39,12 +39,11 @@ void listenerRows(const room::Room& room, const PointModel& m, const CompareOpti
     if (tick) tick(steps);
   }
   const std::vector<std::complex<double>> p = m.relativePressure(src, li.position_m, fine);
-  const bool coherent = std::all_of(p.begin(), p.end(), [](const std::complex<double>& v) { return std::isfinite(v.real()); });
   std::vector<double> e;
-  if (coherent)
-    for (const auto& v : p) e.push_back(std::norm(v));
-  else
+  if (m.addsEnergies())
     e = m.relativeEnergy(src, li.position_m, fine);  // arrivals added as energies: no phase
+  else
+    for (const auto& v : p) e.push_back(std::norm(v));  // NaN where the model gives no value
   for (std::size_t j = 0; j < fine.size(); ++j)
     out.push_back({l, m.name(), fine[j], false, "", levelDb(e[j]), 0.0, std::arg(p[j]) * 180.0 / 3.14159265358979323846});
   if (tick) tick(steps);

@@ -12,6 +12,7 @@
 namespace diffray::compare {
 
 double levelDb(double ratio) {
+  if (std::isnan(ratio)) return ratio;  // no value (a reference above its size limit)
   return ratio > 0.0 ? 10.0 * std::log10(ratio) : -std::numeric_limits<double>::infinity();
 }
 

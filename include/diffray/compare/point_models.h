@@ -30,6 +30,9 @@ class PointModel {
   /// that adds two arrivals as energies).
   virtual std::vector<std::complex<double>> relativePressure(const core::Vec3& source, const core::Vec3& listener,
                                                              const std::vector<double>& freqs_hz) const = 0;
+  /// Whether the model adds arrivals as energies (it has no phase: relativePressure is NaN, relativeEnergy
+  /// holds the levels). Otherwise a NaN pressure is a frequency the model gives no value at.
+  virtual bool addsEnergies() const { return false; }
 };
 
 /// The exact reference for `room` if its occluders fit one (else null, with the reason in `why_not`). The
