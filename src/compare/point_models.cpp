@@ -156,16 +156,18 @@ std::unique_ptr<PointModel> utdModelFor(const room::Room& room, double c) {
   return std::make_unique<UtdPointModel>(room, c);
 }
 
-double bandRelativeEnergy(const PointModel& m, const Vec3& source, const Vec3& listener, double radius_m,
-                          double lo_hz, double hi_hz, int points) {
-  if (points < 1 || !(hi_hz >= lo_hz) || !(lo_hz > 0.0)) throw core::InternalError("bandRelativeEnergy: bad band");
+std::vector<double> bandRelativeEnergies(const PointModel& m, const Vec3& source, const Vec3& listener, double radius_m,
+                                         const std::vector<std::pair<double, double>>& bands_hz, int points) {
+  if (points < 1) throw core::InternalError("bandRelativeEnergies: bad band");
+  std::vector<double> f;
+  for (const auto& [lo_hz, hi_hz] : bands_hz) {
+    if (!(hi_hz >= lo_hz) || !(lo_hz > 0.0)) throw core::InternalError("bandRelativeEnergies: bad band");
+    for (int j = 0; j < points; ++j) f.push_back(lo_hz + (j + 0.5) * (hi_hz - lo_hz) / points);
+  }
   // Degree-3 ball rule: the six points ±a·e_i, a = R·√(3/5), equal weights (⟨x²⟩ = R²/5 over the ball).
   const double a = radius_m * std::sqrt(0.6);
   const double r_centre2 = (listener - source).squaredNorm();
-  std::vector<double> f;
-  for (int j = 0; j < points; ++j) f.push_back(lo_hz + (j + 0.5) * (hi_hz - lo_hz) / points);
-  double sum = 0.0;
-  int n = 0;
+  std::vector<double> sum(bands_hz.size(), 0.0);
   // The rule's axes are turned by a fixed rotation so that no point lies exactly on a shadow boundary
   // through the centre (a plane that often contains a coordinate axis), where a point model's geometric
   // visibility is decided by float rounding; the rule is exact for cubics in any orientation.
@@ -175,12 +177,16 @@ double bandRelativeEnergy(const PointModel& m, const Vec3& source, const Vec3& l
     const Vec3 q = listener + (k % 2 ? a : -a) * turn.col(k / 2);
     // relativeEnergy is |p·R_q|²; re the free field at the centre it is |p|²·R_c² = that·R_c²/R_q².
     const double to_centre = r_centre2 / (q - source).squaredNorm();
-    for (double e : m.relativeEnergy(source, q, f)) {
-      sum += e * to_centre;
-      ++n;
-    }
+    const std::vector<double> e = m.relativeEnergy(source, q, f);  // every band's frequencies in one call
+    for (std::size_t j = 0; j < f.size(); ++j) sum[j / static_cast<std::size_t>(points)] += e[j] * to_centre;
   }
-  return sum / n;
+  for (double& v : sum) v /= 6.0 * points;
+  return sum;
+}
+
+double bandRelativeEnergy(const PointModel& m, const Vec3& source, const Vec3& listener, double radius_m,
+                          double lo_hz, double hi_hz, int points) {
+  return bandRelativeEnergies(m, source, listener, radius_m, {{lo_hz, hi_hz}}, points)[0];
 }
 
 std::vector<double> PointModel::relativeEnergy(const Vec3& source, const Vec3& listener,

@@ -32,10 +32,11 @@ void listenerRows(const room::Room& room, const PointModel& m, const CompareOpti
   const Vec3 src = room.sources[0].position_m;
   const int nb = room.bands.size();
   const room::Listener& li = room.listeners[l];
+  std::vector<std::pair<double, double>> bands;
+  for (int b = 0; b < nb; ++b) bands.emplace_back(room.bands.lowerHz(b), room.bands.upperHz(b));
+  const std::vector<double> e_band = bandRelativeEnergies(m, src, li.position_m, li.radius_m, bands, o.band_points);
   for (int b = 0; b < nb; ++b) {
-    const double e = bandRelativeEnergy(m, src, li.position_m, li.radius_m, room.bands.lowerHz(b),
-                                        room.bands.upperHz(b), o.band_points);
-    out.push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e), 0.0});
+    out.push_back({l, m.name(), room.bands.nominalHz(b), true, room.bands.label(b), levelDb(e_band[b]), 0.0});
     if (tick) tick(steps);
   }
   const std::vector<std::complex<double>> p = m.relativePressure(src, li.position_m, fine);

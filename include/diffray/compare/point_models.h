@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "diffray/core/math.h"
@@ -53,5 +54,11 @@ std::unique_ptr<PointModel> utdModelFor(const room::Room& room, double speed_of_
 /// rule of radius `radius_m` around `listener`, relative to the free field at the ball's centre.
 double bandRelativeEnergy(const PointModel& m, const core::Vec3& source, const core::Vec3& listener, double radius_m,
                           double lo_hz, double hi_hz, int points);
+/// The same for several bands (lo, hi) at once: one relativeEnergy call per point of the ball rule with every
+/// band's frequencies (a model that prepares per call, as the BTM reference does, prepares once per point);
+/// each band's sum in the same order as bandRelativeEnergy's.
+std::vector<double> bandRelativeEnergies(const PointModel& m, const core::Vec3& source, const core::Vec3& listener,
+                                         double radius_m, const std::vector<std::pair<double, double>>& bands_hz,
+                                         int points);
 
 }  // namespace diffray::compare
