@@ -7,12 +7,15 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <cstdio>
 #include <vector>
 
+#include "diffray/compare/point_models.h"
 #include "diffray/core/parallel.h"
 #include "diffray/reference/btm_plate.h"
 #include "diffray/reference/btm_spectrum.h"
+#include "diffray/room/scene_file.h"
 
 namespace diffray::bench {
 namespace {
@@ -44,6 +47,14 @@ void benchBtm(int per_octave) {
   for (const core::Vec3& r : receivers) spectra.push_back(reference::btmPlateSpectrum(k, plate, 0.0, source, r, 2));
   const double spectrum_s = secondsSince(t0);
 
+  // UTD on the same scene as compare runs it (rooms/screen.json: the same plate, ground, source and four
+  // receivers), the same frequencies.
+  const room::Room screen = room::loadRoom(std::string(DIFFRAY_BENCH_ROOMS) + "/screen.json");
+  const auto utd = compare::utdModelFor(screen, kSoundSpeed);
+  const auto t2 = Clock::now();
+  for (const room::Listener& l : screen.listeners) utd->relativePressure(screen.sources[0].position_m, l.position_m, hz);
+  const double utd_s = secondsSince(t2);
+
   // The anchor: one frequency at a time, at three of the grid's frequencies, at the first receiver.
   const std::size_t picks[3] = {0, hz.size() / 2, hz.size() - 1};
   double anchor_s = 0.0, worst = 0.0;
@@ -56,10 +67,11 @@ void benchBtm(int per_octave) {
   std::printf("{\"bench\":\"btm\",\"scene\":\"4x2 m plate on ground\",\"order\":2,\"receivers\":%zu,\"frequencies\":%zu,"
               "\"per_octave\":%d,\"f_lo_hz\":100,\"f_hi_hz\":%.1f,\"threads\":%d,\"seconds\":%.2f,\"target_s\":60,"
               "\"anchor_one_frequency_at_a_time_s_per_frequency\":%.2f,\"anchor_frequencies_hz\":[%.1f,%.1f,%.1f],"
-              "\"anchor_extrapolated_s\":%.0f,\"max_difference_re_free_field\":%.2e}\n",
+              "\"anchor_extrapolated_s\":%.0f,\"max_difference_re_free_field\":%.2e,\"utd_seconds\":%.3f,"
+              "\"utd_target_s\":1}\n",
               receivers.size(), hz.size(), per_octave, hz.back(), core::ThreadLimit::current(), spectrum_s,
               anchor_s / 3.0, hz[picks[0]], hz[picks[1]], hz[picks[2]],
-              anchor_s / 3.0 * static_cast<double>(hz.size() * receivers.size()), worst);
+              anchor_s / 3.0 * static_cast<double>(hz.size() * receivers.size()), worst, utd_s);
   std::fflush(stdout);
 }
 

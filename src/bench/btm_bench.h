@@ -7,7 +7,8 @@ namespace diffray::bench {
 /// standing on a rigid ground, second order, `per_octave` frequencies per octave from 100 Hz to 4 kHz at
 /// four receivers, beside the anchor: the same field evaluated one frequency at a time
 /// (btmPlateOnGroundField) at three of those frequencies, its time per frequency and the largest difference
-/// between the two.
+/// between the two; and UTD on rooms/screen.json (the same plate, ground, source and receivers) at the same
+/// frequencies (target 1 s).
 void benchBtm(int per_octave);
 
 }  // namespace diffray::bench
