@@ -127,11 +127,14 @@ void printTable(const room::Room& room, const compare::SceneComparison& c, bool 
         else std::printf(" %*.2f", width, v);
       };
       std::printf("%8s", band.c_str());
-      if (p.wbsdf) std::printf(" %9.2f ±%5.2f", w, se);
+      if (p.wbsdf) {
+        if (std::isfinite(w)) std::printf(" %9.2f ±%5.2f", w, se);
+        else std::printf(" %16s", "no energy");  // no ray reached the listener in this band, or a negative sum
+      }
       if (p.utd) num(9, u);
       if (p.exact) num(9, e);
       if (p.incoherent) num(12, ew);
-      if (p.wbsdf && p.exact) num(15, w - ew);
+      if (p.wbsdf && p.exact) num(15, std::isfinite(w) ? w - ew : NAN);
       if (p.utd && p.exact) num(11, u - e);
       std::printf("\n");
     }
