@@ -19,12 +19,7 @@
 
 namespace {
 
-using diffray::core::Vec3;
-namespace dr = diffray::room;
-namespace utd = diffray::utd;
 using namespace utd_fixtures;
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<utd::Edge> edgesOf(const dr::Room& room, const utd::EdgeOptions& options = {}) {
   const diffray::transport::RoomGeometry geometry(room);

@@ -19,17 +19,9 @@
 #include "diffray/utd/paths.h"
 #include "utd_fixtures.h"
 
-namespace {
-
-using diffray::core::Vec3;
-using Complex = std::complex<double>;
-namespace dr = diffray::room;
-namespace ref = diffray::reference;
-namespace utd = diffray::utd;
 using namespace utd_fixtures;
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kC = 343.0;
+namespace {
 
 Vec3 cylindrical(double rho, double phi_deg, double z) {
   const double t = phi_deg * kPi / 180.0;

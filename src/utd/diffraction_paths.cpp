@@ -130,10 +130,16 @@ void UtdModel::tryCandidate(const Candidate& c, const Vec3& s, const Vec3& r, st
   const Vec3 a = m_before >= 0 ? mirror(planes[m_before], s) : s;
   const Vec3 r_seen = m_after >= 0 ? mirror(planes[m_after], r) : r;
   Vec3 q[2], from[2], to[2];
+  double arc = 0.0, arc1 = 0.0;  // the apexes' arc lengths on their edges
+  bool on_edge = true;  // false: the apex lies beyond a free end (a corner's wave, finite_edges)
   if (n == 1) {
-    double t;
-    if (!apexOnEdge(edges_[c.edge[0]], a, r_seen, t)) return;
-    q[0] = edges_[c.edge[0]].at(t);
+    const Edge& e = edges_[c.edge[0]];
+    if (!apexOnLine(e, a, r_seen, arc)) return;
+    const double tol = 1e-9 * e.length_m;
+    on_edge = arc >= -tol && arc <= e.length_m + tol;
+    if (on_edge) arc = std::clamp(arc, 0.0, e.length_m);
+    if (!on_edge && !options_.finite_edges) return;
+    q[0] = e.at(arc);
     from[0] = a;
     to[0] = r_seen;
   } else {
@@ -149,6 +155,8 @@ void UtdModel::tryCandidate(const Candidate& c, const Vec3& s, const Vec3& r, st
     if (!apexesOnEdges(e0, e1_seen, a, b, t0, t1)) return;
     q[0] = e0.at(t0);
     q[1] = e1.at(t1);
+    arc = t0;
+    arc1 = t1;
     from[0] = a;
     to[0] = e1_seen.at(t1);
     from[1] = m_between >= 0 ? mirror(planes[m_between], q[0]) : q[0];
@@ -223,11 +231,16 @@ void UtdModel::tryCandidate(const Candidate& c, const Vec3& s, const Vec3& r, st
     Diffraction d[2];
     if (n == 1) {
       if (!diffraction(c.edge[0], q[0], from[0], phi_in0, var.phi_out0, s_in * s_out / (s_in + s_out), d[0])) continue;
+      d[0].arc_m = arc;
+      d[0].curvature = std::pow(std::sin(d[0].beta0), 2) * (1.0 / s_in + 1.0 / s_out);
+      if (!on_edge && !keepsCorner(c.edge[0], arc, d[0].curvature)) continue;
     } else {
       const double rho = s_in + s_mid;
       if (!diffraction(c.edge[0], q[0], from[0], phi_in0, var.phi_out0, s_in * s_mid / rho, d[0]) ||
           !diffraction(c.edge[1], q[1], from[1], var.phi_in1, phi_out_last, rho * s_out / (rho + s_out), d[1]))
         continue;
+      d[0].arc_m = arc;
+      d[1].arc_m = arc1;
     }
     // Every leg in the clear, between points lifted off what they lie on; a leg along a face is lifted off
     // it on its side (instead of along the bisector at its apexes).
@@ -238,7 +251,8 @@ void UtdModel::tryCandidate(const Candidate& c, const Vec3& s, const Vec3& r, st
       const bool middle = n == 2 && k >= apex0 && k < apex_last;
       const Vec3 side = !middle ? Vec3(0, 0, 0) : (k + 1 == apex_last ? var.side1 : var.side0);
       const auto end = [&](const Vertex& w, const Vec3& nu) {
-        Vec3 p = w.p + w.lift;
+        // An apex beyond the edge's end is seen through the end (the corner).
+        Vec3 p = (w.edge >= 0 && !on_edge ? edges_[w.edge].at(std::clamp(arc, 0.0, edges_[w.edge].length_m)) : w.p) + w.lift;
         if (nu.squaredNorm() > 0.0)
           p += offsetAt(w.p) * nu;
         else if (w.edge >= 0)

@@ -26,6 +26,7 @@ UtdModel::UtdModel(const room::Room& room, const transport::RoomGeometry& geomet
   core::requireFinite("utd face_reflection", options_.face_reflection);
   edges_ = extractEdges(room, geometry, options_.edges);
   for (int m = 0; m < static_cast<int>(room.materials.size()); ++m) opening_.push_back(room.isOpening(m) ? 1 : 0);
+  findEdgeRanges();
   if (!room.mesh.vertices.empty()) {
     Vec3 lo = room.mesh.vertices[0], hi = lo;
     for (const Vec3& v : room.mesh.vertices) {
@@ -72,6 +73,11 @@ double UtdModel::offsetAt(const Vec3& p) {
 
 Vec3 UtdModel::offEdge(int e, const Vec3& apex) const { return apex + offsetAt(apex) * edges_[e].bisector(); }
 
+bool UtdModel::apexWithinEdge(const Diffraction& d) const {
+  const double length = edges_[d.edge].length_m, tol = 1e-9 * length;
+  return d.arc_m >= -tol && d.arc_m <= length + tol;
+}
+
 double UtdModel::phiOf(int e, const Vec3& p) const {
   const double phi = edges_[e].phi(p);
   return phi > core::kTwoPi - 1e-9 ? 0.0 : phi;  // a point exactly on face 0 may come out as 2π − tiny
@@ -116,6 +122,7 @@ std::vector<Path> UtdModel::paths(const Vec3& source, const Vec3& listener) cons
   for (const Path& p : out) {
     if (p.kind != PathKind::Diffraction || p.order != 1 || p.bounces.size() > 1) continue;
     const Diffraction& d = p.diffractions[0];
+    if (!apexWithinEdge(d)) continue;  // a corner's wave: the edge's boundaries do not reach past its end
     const bool incident = std::abs(std::abs(d.phi_out - d.phi_in) - core::kPi) < tol;
     if (!p.bounces.empty()) {
       const int t = p.bounces[0].triangle;
@@ -169,7 +176,7 @@ std::complex<double> UtdModel::pressure(const Path& path, double freq_hz, double
     const int next = i + 1 < path.diffractions.size() ? path.diffractions[i + 1].point : static_cast<int>(pts.size()) - 1;
     const double s = unfolded(d.point, next);
     const FaceReflection r{faceReflection(e.material0, freq_hz), faceReflection(e.materialn, freq_hz)};
-    cd dc = wedgeCoefficient(e.wedge_n, k, d.l_m, d.phi_out, d.phi_in, d.beta0, r);
+    cd dc = wedgeCoefficient(e.wedge_n, k, d.l_m, d.phi_out, d.phi_in, d.beta0, r, truncation(d, k), apexWithinEdge(d));
     if (d.grazing) dc *= 0.5;
     p *= dc * std::sqrt(rho / (s * (rho + s)));
     rho += s;

@@ -33,12 +33,27 @@
 // (an edge standing on the reflecting plane, the apex at its foot), the path through the edge and its
 // mirror image is one path: it is kept once, as the reflection before the apex.
 //
+// Finite edges (UtdOptions::finite_edges): UTD is the stationary-phase value of the BTM edge-source integral
+// over an infinite edge (Svensson, Fred & Vanderkooy 1999); over a finite one the integral of the phase
+// e^{−ik(m + l)} ≈ e^{−ik(s′ + s)}·e^{−iτ²} runs between the ends only, τ = (z − z_a)·√(kP″/2), P″ = sin²β0·
+// (1/s′ + 1/s) the curvature of the path length along the edge at the apex z_a (the unfolded distances), so
+// a first-order diffraction takes T = ∫_{τ0}^{τ1} e^{−iτ²}dτ / ∫_{−∞}^{∞} e^{−iτ²}dτ (a stationary point
+// near an end point, Felsen & Marcuvitz, Radiation and Scattering of Waves, 1973, §4.2). Where the apex lies
+// beyond a free end, within three units of τ at the lowest band's lower frequency, the tail is kept: the
+// wave of the edge's corner. Each term of D takes (apex on the edge ? 1 − |F(X)| : 0) + |F(X)|·T
+// (coefficient.h), an interpolation between a term on its shadow or reflection boundary, whose integrand is
+// concentrated at the apex (in full on the edge, so the total field stays continuous there; nothing beyond
+// its end), and one far from it, whose amplitude is smooth over the Fresnel zone (T). An end on a plane perpendicular to the edge (a foot standing on a face) is no end: the
+// edge continues as its mirror image; an edge between two such planes is infinite. Second-order
+// diffractions are not truncated.
+//
 // Face reflection coefficients: UtdOptions::face_reflection for every face (+1 rigid), or with
 // material_reflection √(1 − α) of the face's material in the band that holds the frequency. Air absorption
 // and source directivity are not applied (the caller's). Units: metres, Hz, m/s, seconds.
 // Thread-safety: a UtdModel is immutable after construction; every method is const and thread-safe. It
 // keeps references to the room and the geometry, which must outlive it.
 #include <complex>
+#include <utility>
 #include <vector>
 
 #include "diffray/core/bands.h"
@@ -57,6 +72,9 @@ struct UtdOptions {
   /// The most reflections on one second-order diffraction path (0 to 3). Each multiplies the paths to try by
   /// the number of planes: 1 keeps a furnished room fast, 3 is complete for first-order reflections.
   int second_order_reflections = 1;
+  /// First-order diffraction on each edge's finite length (the header's T) and off its free ends; false:
+  /// every edge as if it went on without end, and only apexes on it.
+  bool finite_edges = true;
   double face_reflection = 1.0;      ///< R of every face and wedge face: +1 rigid, −1 soft
   bool material_reflection = false;  ///< use √(1 − α(band)) of each face's material instead
   EdgeOptions edges;
@@ -73,6 +91,8 @@ struct Diffraction {
   double l_m = 0.0;      ///< UTD distance parameter L
   bool grazing = false;  ///< incidence along a face: D is halved
   int point = -1;        ///< index of the apex in Path::points
+  double arc_m = 0.0;      ///< the apex's arc length on the edge's line (beyond its ends for a corner's wave)
+  double curvature = 0.0;  ///< P″ (1/m) for the finite-edge factor; 0: not truncated (second order)
 };
 
 /// A specular reflection on a diffraction path.
@@ -163,8 +183,20 @@ class UtdModel {
   /// the edge.
   bool diffraction(int e, const core::Vec3& apex, const core::Vec3& from, double phi_in, double phi_out, double l_m,
                    Diffraction& d) const;
+  /// Whether d's apex lies on its edge (not beyond an end).
+  bool apexWithinEdge(const Diffraction& d) const;
   /// φ of point p about edge e in [0, 2π), a point on face 0 read as 0 (not 2π − rounding).
   double phiOf(int e, const core::Vec3& p) const;
+  // Finite edges (finite_edges.cpp).
+  /// Per edge, the arc range its finite-edge factor integrates over: its ends, or beyond an end standing
+  /// on a plane perpendicular to it (its mirror image continues it), ±infinity for such planes at both ends.
+  void findEdgeRanges();
+  /// The finite-edge factor T of a first-order diffraction at wavenumber k (1 for second order or
+  /// finite_edges off).
+  std::complex<double> truncation(const Diffraction& d, double k) const;
+  /// Whether an apex at arc length `arc` beyond edge e's free end is kept (its tail within three units of τ at
+  /// the lowest band's lower frequency), with P″ = curvature.
+  bool keepsCorner(int e, double arc, double curvature) const;
   /// The edge's air point for visibility tests: the apex moved the offset along the bisector.
   core::Vec3 offEdge(int e, const core::Vec3& apex) const;
   /// The offset (m) of a point at p off an edge or face: max(10 µm, 128·FLT_EPSILON·max|p_i|).
@@ -174,6 +206,7 @@ class UtdModel {
   const transport::RoomGeometry& geometry_;
   UtdOptions options_;
   std::vector<Edge> edges_;
+  std::vector<std::pair<double, double>> range_;  ///< per edge: findEdgeRanges
   std::vector<char> opening_;  ///< per material
   core::Vec3 centre_{0, 0, 0};  ///< of the mesh's bounding box
 };
