@@ -63,10 +63,15 @@ std::complex<double> UtdModel::truncation(const Diffraction& d, double k) const 
 }
 
 bool UtdModel::keepsCorner(int e, double arc, double curvature) const {
+  // Only beyond a free end: beyond a foot the stationary point lies on the edge's mirror image, whose
+  // paths are the ones with the reflection off that face.
+  const double length = edges_[e].length_m;
   const auto& [lo, hi] = range_[e];
-  const double beyond = arc < lo ? lo - arc : (arc > hi ? arc - hi : 0.0);
+  double beyond = 0.0;
+  if (arc < 0.0 && lo == 0.0) beyond = -arc;
+  if (arc > length && hi == length) beyond = arc - length;
   const double k_low = core::kTwoPi * room_.bands.lowerHz(0) / room::speedOfSound(room_.air);
-  return std::isfinite(beyond) && beyond * std::sqrt(0.5 * k_low * curvature) <= 3.0;
+  return beyond > 0.0 && beyond * std::sqrt(0.5 * k_low * curvature) <= 3.0;
 }
 
 }  // namespace diffray::utd

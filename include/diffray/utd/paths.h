@@ -194,8 +194,8 @@ class UtdModel {
   /// The finite-edge factor T of a first-order diffraction at wavenumber k (1 for second order or
   /// finite_edges off).
   std::complex<double> truncation(const Diffraction& d, double k) const;
-  /// Whether an apex at arc length `arc` beyond edge e's free end is kept (its tail within three units of τ at
-  /// the lowest band's lower frequency), with P″ = curvature.
+  /// Whether an apex at arc length `arc` off edge e is kept as its corner's wave: beyond a free end (not a
+  /// foot), its tail within three units of τ at the lowest band's lower frequency, with P″ = curvature.
   bool keepsCorner(int e, double arc, double curvature) const;
   /// The edge's air point for visibility tests: the apex moved the offset along the bisector.
   core::Vec3 offEdge(int e, const core::Vec3& apex) const;
