@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "diffray/core/error.h"
 #include "diffray/reference/btm_spectrum.h"
 #include "diffray/reference/half_plane_point.h"
 #include "diffray/transport/room_geometry.h"
@@ -253,5 +254,33 @@ TEST(UtdReflectedPaths, EdgeToEdgeAlongAThinStripMatchesTheBtmSecondOrderTerm) {
     const double diff = 10.0 * std::log10(e_utd / e_exact);
     EXPECT_NEAR(diff, 0.0, 1.0) << band;
     std::printf("thin strip, %g Hz octave: second order UTD - BTM %.2f dB\n", band, diff);
+  }
+}
+
+TEST(UtdReflectedPaths, CountsOfReflectionsOnSecondOrderPaths) {
+  // 0 to 3 reflections on a second-order path, each allowance finding more paths over a barrier on a ground
+  // (the top edge twice, down the barrier to the ground at its foot and back up between; the side edges; the
+  // ground before and after).
+  const Vec3 s(0.7, -4, 1.2), r(-1.9, 5, 0.6);
+  const dr::Room room = barrierOnGround(s);
+  const diffray::transport::RoomGeometry geometry(room);
+  for (int bad : {-1, 4}) {
+    utd::UtdOptions o;
+    o.second_order_reflections = bad;
+    EXPECT_THROW(utd::UtdModel(room, geometry, o), diffray::core::InputError) << bad;
+  }
+  int previous = -1;
+  for (int most = 0; most <= 3; ++most) {
+    utd::UtdOptions o;
+    o.second_order_reflections = most;
+    const utd::UtdModel model(room, geometry, o);
+    int second = 0;
+    for (const auto& p : model.paths(s, r)) {
+      if (p.kind != utd::PathKind::Diffraction || p.order != 2) continue;
+      ++second;
+      EXPECT_LE(static_cast<int>(p.bounces.size()), most);
+    }
+    EXPECT_GT(second, previous) << most;
+    previous = second;
   }
 }

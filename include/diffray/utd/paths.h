@@ -6,7 +6,8 @@
 // any frequency for a point source of unit amplitude, p = e^{−ikR}/R in free field (time factor e^{iωt}).
 //
 // Diffraction point (apex): Fermat's principle on each finite edge (the shortest path through points of the
-// edges, the Keller cone); a path whose apex falls outside an edge segment is not a path. Every leg is
+// edges, the Keller cone); a path whose apex falls outside an edge segment is not a path (but for the wave of
+// a first-order edge's corner, "Finite edges" below). Every leg is
 // checked with the room's intersector (openings let sound through), starting and ending a small offset
 // off edges and faces into the air: offsetAt(p), absolute and set by the point's own float rounding (128
 // float ulps of |p|, at least 10 µm), so that nothing depends on how large the scene is. Pressure (Kouyoumjian–Pathak, coefficient.h):
@@ -31,7 +32,10 @@
 // points before and after it on the plane's same side, and every leg must be clear. A face that holds the
 // edge is not a reflection for it (its reflection is part of D). Where the reflection point falls on the apex
 // (an edge standing on the reflecting plane, the apex at its foot), the path through the edge and its
-// mirror image is one path: it is kept once, as the reflection before the apex.
+// mirror image is one path: it is kept once, as the reflection before the apex. A second-order path takes
+// at most UtdOptions::second_order_reflections of its three. A listener on the incident shadow boundary of
+// the source's (or its own) image diffracted at an edge gets the reflection off that plane at half strength,
+// as the direct sound on a plain edge's boundary.
 //
 // Finite edges (UtdOptions::finite_edges): UTD is the stationary-phase value of the BTM edge-source integral
 // over an infinite edge (Svensson, Fred & Vanderkooy 1999); over a finite one the integral of the phase
@@ -43,9 +47,9 @@
 // wave of the edge's corner. Each term of D takes (apex on the edge ? 1 − |F(X)| : 0) + |F(X)|·T
 // (coefficient.h), an interpolation between a term on its shadow or reflection boundary, whose integrand is
 // concentrated at the apex (in full on the edge, so the total field stays continuous there; nothing beyond
-// its end), and one far from it, whose amplitude is smooth over the Fresnel zone (T). An end on a plane perpendicular to the edge (a foot standing on a face) is no end: the
-// edge continues as its mirror image; an edge between two such planes is infinite. Second-order
-// diffractions are not truncated.
+// its end), and one far from it, whose amplitude is smooth over the Fresnel zone (T). An end on a plane
+// perpendicular to the edge (a foot standing on a face) is no end: the edge continues as its mirror image;
+// an edge between two such planes is infinite. Second-order diffractions are not truncated.
 //
 // Face reflection coefficients: UtdOptions::face_reflection for every face (+1 rigid), or with
 // material_reflection √(1 − α) of the face's material in the band that holds the frequency. Air absorption
