@@ -17,15 +17,7 @@
 
 namespace {
 
-using diffray::core::Vec3;
-using Complex = std::complex<double>;
-namespace dr = diffray::room;
-namespace ref = diffray::reference;
-namespace utd = diffray::utd;
 using namespace utd_fixtures;
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kC = 343.0;
 
 // Level re free field of a unit point source over an infinite rigid plane z = 0 (image source closed form).
 double groundClosedFormDb(const Vec3& s, const Vec3& r, double f) {

@@ -1,7 +1,10 @@
 // Edge extraction (utd/edges.h) on scenes whose diffracting edges are known by construction: a box room
 // (none: every edge is concave from inside), a thin plate (4 free edges, half-planes), a box obstacle in
 // free field and inside a room (12 convex right-angled edges), and the shipped two-rooms scene (the six
-// edges of the doorway: two jambs and the lintel on each side of the 0.2 m partition).
+// edges of the doorway: two jambs and the lintel on each side of the 0.2 m partition); and lines inside another
+// surface: the foot of a panel standing on a ground (two 90° inside corners, no edge, while the part of the
+// foot beyond the ground is a free edge again) and a box standing on a ground (its bottom edges are inside
+// corners).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,12 +19,7 @@
 
 namespace {
 
-using diffray::core::Vec3;
-namespace dr = diffray::room;
-namespace utd = diffray::utd;
 using namespace utd_fixtures;
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<utd::Edge> edgesOf(const dr::Room& room, const utd::EdgeOptions& options = {}) {
   const diffray::transport::RoomGeometry geometry(room);
@@ -140,4 +138,57 @@ TEST(UtdEdges, ShippedRoomsCounts) {
   std::printf("l-hall: %zu diffracting edges\n", hall.size());
   EXPECT_EQ(hall.size(), 18u);
   expectConsistentFrames(hall);
+}
+
+TEST(UtdEdges, FootOfAPanelStandingOnAGroundIsNotAnEdge) {
+  // A 4 × 2 m panel standing on a 60 × 60 m ground whose two triangles do not share the panel's vertices
+  // (their diagonal crosses the foot at its middle): the foot lies inside the ground, where the air sees two
+  // 90° inside corners; the top and the two sides are the panel's free edges (half-planes). With the ground
+  // ending at x = −1 the foot's piece from x = −2 to −1 stands in the air: a free edge again.
+  for (double ground_from : {-30.0, -1.0}) {
+    dr::Room room;
+    const int m = rigidMaterial(room);
+    addPlate(room, Vec3(ground_from, -30, 0), Vec3(30 - ground_from, 0, 0), Vec3(0, 60, 0), m);
+    addPlate(room, Vec3(-2, 0, 0), Vec3(4, 0, 0), Vec3(0, 0, 2), m);
+    room.sources.push_back({"S", Vec3(0, -2, 0.5), 1.0, {}});
+    int panel_edges = 0, on_ground = 0;
+    for (const auto& e : edgesOf(room)) {
+      if (std::abs(e.start.y()) > 1e-9 || std::abs(e.end.y()) > 1e-9) continue;  // the ground's own outline
+      ++panel_edges;
+      EXPECT_NEAR(e.wedge_n, 2.0, 1e-12);
+      if (std::abs(e.start.z()) < 1e-9 && std::abs(e.end.z()) < 1e-9) {
+        ++on_ground;
+        EXPECT_NEAR(std::min(e.start.x(), e.end.x()), -2.0, 1e-9);
+        EXPECT_NEAR(std::max(e.start.x(), e.end.x()), -1.0, 1e-9);
+      }
+    }
+    EXPECT_EQ(on_ground, ground_from < -2.0 ? 0 : 1) << ground_from;
+    EXPECT_EQ(panel_edges, ground_from < -2.0 ? 3 : 4) << ground_from;
+  }
+}
+
+TEST(UtdEdges, BoxStandingOnAGroundHasNoBottomEdges) {
+  // A 1 × 0.5 × 1.2 m box on a 20 × 20 m ground plate: its four top edges and four vertical edges are
+  // right-angled wedges; its bottom edges lie inside the ground (inside corners); the ground's outline is
+  // four half-plane edges.
+  dr::Room room;
+  const int m = rigidMaterial(room);
+  addPlate(room, Vec3(-10, -10, 0), Vec3(20, 0, 0), Vec3(0, 20, 0), m);
+  addBox(room, Vec3(1, 1, 0), Vec3(2, 1.5, 1.2), m);
+  room.sources.push_back({"S", Vec3(3, 3, 1), 1.0, {}});
+  const auto edges = edgesOf(room);
+  int wedges = 0, plates = 0;
+  for (const auto& e : edges) {
+    if (std::abs(e.wedge_n - 1.5) < 1e-12) {
+      ++wedges;
+      EXPECT_GT(std::max(e.start.z(), e.end.z()), 1.0);  // a top or a vertical edge
+    } else {
+      EXPECT_NEAR(e.wedge_n, 2.0, 1e-12);
+      EXPECT_NEAR(std::max(std::abs(e.start.x()), std::abs(e.start.y())), 10.0, 1e-9);
+      ++plates;
+    }
+  }
+  EXPECT_EQ(wedges, 8);
+  EXPECT_EQ(plates, 4);
+  expectConsistentFrames(edges);
 }

@@ -1,12 +1,24 @@
 #pragma once
-// Small scenes for the UTD tests, built in code: a rigid material, box rooms and obstacles, thin plates.
+// Small scenes for the UTD tests, built in code: a rigid material, box rooms and obstacles, thin plates; and
+// the names the tests share (a file's own declarations of them take precedence).
+#include <complex>
 #include <string>
 
 #include "diffray/room/room.h"
 
+namespace diffray::utd {}
+namespace diffray::reference {}
+
 namespace utd_fixtures {
 
 using diffray::core::Vec3;
+using Complex = std::complex<double>;
+namespace dr = diffray::room;
+namespace ref = diffray::reference;
+namespace utd = diffray::utd;
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kC = 343.0;  ///< speed of sound (m/s)
 
 inline int rigidMaterial(diffray::room::Room& room, const std::string& name = "rigid") {
   diffray::room::Material m;

@@ -134,8 +134,8 @@ void addRaysOption(CLI::App* sub, std::uint64_t& target, const std::string& help
 void addDiffractionOptions(CLI::App* sub, std::string& diffraction, int& order) {
   sub->add_option("--diffraction", diffraction,
                   "none: geometric acoustics (doorways pass rays straight); wbsdf: rays diffract at the room's "
-                  "occluders (rooms/README.md); utd: edge-diffraction paths (Kouyoumjian-Pathak) of the mesh's edges "
-                  "added to the geometric response")
+                  "occluders (rooms/README.md); utd: edge-diffraction paths (Kouyoumjian-Pathak) of the mesh's edges, "
+                  "with first-order reflections before and after them, added to the geometric response")
       ->check(CLI::IsMember({"none", "wbsdf", "utd"}))
       ->capture_default_str();
   sub->add_option("--diffraction-order", order,

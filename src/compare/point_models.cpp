@@ -106,6 +106,7 @@ class UtdPointModel : public PointModel {
   UtdPointModel(const room::Room& room, double c) : room_(room), geometry_(room), c_(c) {
     utd::UtdOptions opt;
     opt.material_reflection = true;
+    opt.second_order_reflections = 3;  // free-field scenes have few planes: every combination is cheap
     model_ = std::make_unique<utd::UtdModel>(room_, geometry_, opt);
   }
   std::string name() const override { return "utd"; }

@@ -36,7 +36,7 @@ struct Objective {
 
 }  // namespace
 
-bool apexOnEdge(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m) {
+bool apexOnLine(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m) {
   const Vec3 pa = a - edge.start, pb = b - edge.start;
   const double za = pa.dot(edge.tangent), zb = pb.dot(edge.tangent);
   const double ra = (pa - za * edge.tangent).norm(), rb = (pb - zb * edge.tangent).norm();
@@ -44,7 +44,11 @@ bool apexOnEdge(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m) {
   // Unfold the half-planes through a and through b about the edge into one plane: the straight line from
   // (za, ra) to (zb, −rb) crosses the edge at za + (zb − za)·ra/(ra + rb).
   s_m = za + (zb - za) * ra / (ra + rb);
-  return onSegment(edge, s_m);
+  return true;
+}
+
+bool apexOnEdge(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m) {
+  return apexOnLine(edge, a, b, s_m) && onSegment(edge, s_m);
 }
 
 bool apexesOnEdges(const Edge& e1, const Edge& e2, const Vec3& a, const Vec3& b, double& s1_m, double& s2_m) {

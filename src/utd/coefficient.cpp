@@ -44,21 +44,32 @@ std::complex<double> transitionF(double x) {
   return std::sqrt(core::kPi * x) * e1 * faddeeva(e3 * s);
 }
 
-std::complex<double> cotTransition(double n, double kl, double eps) {
+namespace {
+
+// cot(ε/2n)·F(2kL sin²(ε/2)) (cotTransition), weighted (on ? 1 − |F| : 0) + |F|·T for a finite edge's
+// factor T (wedgeCoefficient).
+cd weightedTerm(double n, double kl, double eps, cd truncation, bool on) {
   const cd e1 = std::polar(1.0, 0.25 * core::kPi);
   if (std::abs(eps) <= kBoundaryTolRad) {
     // On the boundary (within the tolerance paths.cpp halves the geometric field in): the mean of the two
     // one-sided limits of cot(ε/2n)·F ≈ n[√(2πkL)·sgn ε − 2kLε e^{iπ/4}]e^{iπ/4} (KP 1974: cot(ε/2n) ≈ 2n/ε,
     // F(X) ≈ √(πX)e^{iπ/4} − 2iX, √X ≈ √(kL/2)|ε|). The total field varies over ~1/√(kL) rad, so taking
-    // its boundary value this close costs ~√(kL)·1e-9 relative.
-    return n * (-2.0 * kl * eps * e1) * e1;
+    // its boundary value this close costs ~√(kL)·1e-9 relative. |F| vanishes there.
+    return on ? n * (-2.0 * kl * eps * e1) * e1 : cd(0.0);
   }
   const double s = std::sin(0.5 * eps);
-  return transitionF(2.0 * kl * s * s) / std::tan(eps / (2.0 * n));
+  const cd f = transitionF(2.0 * kl * s * s);
+  const double a = std::abs(f);
+  const cd weight = on && truncation == 1.0 ? cd(1.0) : (on ? 1.0 - a : 0.0) + a * truncation;
+  return weight * f / std::tan(eps / (2.0 * n));
 }
 
+}  // namespace
+
+std::complex<double> cotTransition(double n, double kl, double eps) { return weightedTerm(n, kl, eps, 1.0, true); }
+
 std::complex<double> wedgeCoefficient(double n, double k, double l_m, double phi, double phi_inc, double beta0,
-                                      FaceReflection r) {
+                                      FaceReflection r, std::complex<double> truncation, bool apex_on_edge) {
   const char* where = "utd::wedgeCoefficient";
   if (!(n >= 1.0) || !std::isfinite(n)) throw core::InputError(where, "wedge index n must be >= 1");
   core::requirePositive(where, k);
@@ -71,10 +82,10 @@ std::complex<double> wedgeCoefficient(double n, double k, double l_m, double phi
   // cot((π − β)/2n)F(kLa⁻(β)): π − β + 2πnN⁻, N⁻ = round((β − π)/2πn). cot has period π, so each term is
   // cot(ε/2n)·F(2kL sin²(ε/2)), evaluated without the cancellation of cot near its poles.
   const auto plus = [&](double beta) {
-    return cotTransition(n, kl, core::kPi + beta - two_pi_n * std::round((beta + core::kPi) / two_pi_n));
+    return weightedTerm(n, kl, core::kPi + beta - two_pi_n * std::round((beta + core::kPi) / two_pi_n), truncation, apex_on_edge);
   };
   const auto minus = [&](double beta) {
-    return cotTransition(n, kl, core::kPi - beta + two_pi_n * std::round((beta - core::kPi) / two_pi_n));
+    return weightedTerm(n, kl, core::kPi - beta + two_pi_n * std::round((beta - core::kPi) / two_pi_n), truncation, apex_on_edge);
   };
   const double bm = phi - phi_inc, bp = phi + phi_inc;
   const cd sum = plus(bm) + minus(bm) + r.face0 * minus(bp) + r.facen * plus(bp);

@@ -91,6 +91,89 @@ struct Chain {
   Vec3 origin, dir;
 };
 
+// A triangle in the plane of a chain that covers its line over [t0, t1] (chain parameter, metres).
+struct Coplanar {
+  int tri;
+  double t0, t1;
+};
+
+// The faces around interval iv: the triangle of each of its segments, as the unit direction ⊥ the line from
+// the line into the triangle.
+std::vector<Face> faceDirs(const Interval& iv, const Chain& ch, const std::vector<Segment>& segs,
+                           const std::vector<Vec3>& pos) {
+  std::vector<Face> faces;
+  for (int s : iv.segments) {
+    const Vec3 r = pos[segs[s].apex] - ch.origin;
+    faces.push_back({0.0, (r - r.dot(ch.dir) * ch.dir).normalized(), segs[s].tri});
+  }
+  return faces;
+}
+
+// Angles about `axis` from the first face, ascending, duplicates (the same direction) removed.
+void sortFaces(std::vector<Face>& faces, const Vec3& axis) {
+  if (faces.empty()) return;
+  const Vec3 u0 = faces[0].dir, v0 = axis.cross(u0);
+  for (Face& f : faces) {
+    f.theta = std::atan2(f.dir.dot(v0), f.dir.dot(u0));
+    if (f.theta < 0.0) f.theta += core::kTwoPi;
+    if (f.theta > core::kTwoPi - 1e-9) f.theta = 0.0;
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.theta < b.theta; });
+  faces.erase(std::unique(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return b.theta - a.theta < 1e-9; }),
+              faces.end());
+}
+
+// The largest angular gap between consecutive sorted faces (2π for one face, 0 for none).
+double largestGap(const std::vector<Face>& sorted) {
+  if (sorted.empty()) return 0.0;
+  double gap = sorted.front().theta + core::kTwoPi - sorted.back().theta;
+  for (std::size_t i = 0; i + 1 < sorted.size(); ++i) gap = std::max(gap, sorted[i + 1].theta - sorted[i].theta);
+  return gap;
+}
+
+// Signed distances (m) of p from the three sides of triangle t, positive inside (in its plane).
+std::array<double, 3> sideDistances(const geometry::Mesh& mesh, int t, const Vec3& p) {
+  const auto& v = mesh.triangles[t];
+  const Vec3 a = mesh.vertices[v[0]], b = mesh.vertices[v[1]], c = mesh.vertices[v[2]];
+  const Vec3 n = (b - a).cross(c - a).normalized();
+  const Vec3 corner[3] = {a, b, c};
+  std::array<double, 3> d{};
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 &p0 = corner[i], &p1 = corner[(i + 1) % 3];
+    d[i] = n.cross(p1 - p0).normalized().dot(p - p0);  // the inward normal of side p0 → p1
+  }
+  return d;
+}
+
+// Whether p (in the triangle's plane) lies inside triangle t or within `tol` (m) of it.
+bool pointInTriangle(const geometry::Mesh& mesh, int t, const Vec3& p, double tol) {
+  const auto d = sideDistances(mesh, t, p);
+  return d[0] >= -tol && d[1] >= -tol && d[2] >= -tol;
+}
+
+// The parameter range [t0, t1] of the line origin + t·dir (in the triangle's plane) that lies inside
+// triangle t (a line along one of its sides, within `tol` (m), counts as inside); false when it is shorter
+// than tol.
+bool lineInTriangle(const geometry::Mesh& mesh, int t, const Vec3& origin, const Vec3& dir, double tol, double& t0,
+                    double& t1) {
+  const auto d0 = sideDistances(mesh, t, origin), d1 = sideDistances(mesh, t, origin + dir);
+  t0 = -1e300;
+  t1 = 1e300;
+  for (int i = 0; i < 3; ++i) {
+    const double rate = d1[i] - d0[i];  // change of the distance per unit t
+    if (std::abs(rate) < 1e-12) {
+      if (d0[i] < -tol) return false;
+      continue;
+    }
+    const double at = -d0[i] / rate;  // where the line crosses this side
+    if (rate > 0.0)
+      t0 = std::max(t0, at);
+    else
+      t1 = std::min(t1, at);
+  }
+  return t1 - t0 > tol;
+}
+
 }  // namespace
 
 std::vector<Edge> extractEdges(const room::Room& room, const transport::RoomGeometry& geometry,
@@ -142,30 +225,76 @@ std::vector<Edge> extractEdges(const room::Room& room, const transport::RoomGeom
     chain_segs[it->second].push_back(static_cast<int>(s));
   }
 
-  // 3. Elementary intervals of each chain between all its segment end points.
+  // 3. Elementary intervals of each chain between all its segment end points (and the extra cuts of step 3b).
   std::vector<Interval> intervals;
-  for (std::size_t c = 0; c < chains.size(); ++c) {
-    const Chain& ch = chains[c];
-    const auto param = [&](int v) { return (pos[v] - ch.origin).dot(ch.dir); };
-    std::vector<double> bp;
-    for (int s : chain_segs[c]) {
-      bp.push_back(param(segs[s].a));
-      bp.push_back(param(segs[s].b));
+  const auto param_of = [&](const Chain& ch, int v) { return (pos[v] - ch.origin).dot(ch.dir); };
+  const auto cutChains = [&](const std::vector<std::vector<double>>& extra_cuts) {
+    intervals.clear();
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+      const Chain& ch = chains[c];
+      std::vector<double> bp = extra_cuts[c];
+      double lo = 1e300, hi = -1e300;
+      for (int s : chain_segs[c])
+        for (int v : {segs[s].a, segs[s].b}) {
+          bp.push_back(param_of(ch, v));
+          lo = std::min(lo, bp.back());
+          hi = std::max(hi, bp.back());
+        }
+      std::sort(bp.begin(), bp.end());
+      std::vector<double> cuts;
+      for (double t : bp)
+        if (t >= lo - tol && t <= hi + tol && (cuts.empty() || t - cuts.back() > tol)) cuts.push_back(t);
+      const std::size_t first = intervals.size();
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) intervals.push_back({static_cast<int>(c), cuts[k], cuts[k + 1], {}});
+      const auto cut_index = [&](double t) {
+        return static_cast<std::size_t>(std::lower_bound(cuts.begin(), cuts.end(), t - tol) - cuts.begin());
+      };
+      for (int s : chain_segs[c]) {
+        std::size_t k0 = cut_index(param_of(ch, segs[s].a)), k1 = cut_index(param_of(ch, segs[s].b));
+        if (k0 > k1) std::swap(k0, k1);
+        for (std::size_t k = k0; k < k1; ++k) intervals[first + k].segments.push_back(s);
+      }
     }
-    std::sort(bp.begin(), bp.end());
-    std::vector<double> cuts;
-    for (double t : bp)
-      if (cuts.empty() || t - cuts.back() > tol) cuts.push_back(t);
-    const std::size_t first = intervals.size();
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) intervals.push_back({static_cast<int>(c), cuts[k], cuts[k + 1], {}});
-    const auto cut_index = [&](double t) {
-      return static_cast<std::size_t>(std::lower_bound(cuts.begin(), cuts.end(), t - tol) - cuts.begin());
-    };
-    for (int s : chain_segs[c]) {
-      std::size_t k0 = cut_index(param(segs[s].a)), k1 = cut_index(param(segs[s].b));
-      if (k0 > k1) std::swap(k0, k1);
-      for (std::size_t k = k0; k < k1; ++k) intervals[first + k].segments.push_back(s);
+  };
+  std::vector<std::vector<double>> extra_cuts(chains.size());
+  cutChains(extra_cuts);
+
+  // 3b. Lines inside other surfaces: a chain that lies in the plane of a triangle it is not an edge of (the
+  // foot of a panel standing on a ground whose triangles do not share its vertices) has that triangle on
+  // one or both sides as well; such a triangle is a face of the chain where it covers it. Only chains with
+  // an interval that could be an edge (an angular gap above π) are searched, in the planes of the geometry
+  // (a triangle with a segment on the chain is a face there already). The chain is cut where the coverage
+  // starts and ends.
+  std::vector<std::vector<Coplanar>> coplanar(chains.size());
+  {
+    std::vector<char> candidate(chains.size(), 0);
+    for (const Interval& iv : intervals) {
+      if (candidate[iv.chain]) continue;
+      std::vector<Face> faces = faceDirs(iv, chains[iv.chain], segs, pos);
+      sortFaces(faces, chains[iv.chain].dir);
+      if (!faces.empty() && largestGap(faces) > core::kPi * (1.0 + 1e-9)) candidate[iv.chain] = 1;
     }
+    bool any = false;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+      if (!candidate[c]) continue;
+      const Chain& ch = chains[c];
+      std::vector<int> own;
+      for (int s : chain_segs[c]) own.push_back(segs[s].tri);
+      for (const auto& pl : geometry.planes()) {
+        if (std::abs(pl.normal.dot(ch.dir)) > 1e-9 || std::abs(pl.normal.dot(ch.origin) - pl.offset) > tol) continue;
+        for (int t : pl.triangles) {
+          if (room.isOpening(mesh.object_of_triangle[t]) || std::find(own.begin(), own.end(), t) != own.end()) continue;
+          // A triangle that only touches the line at a vertex covers it over a few tolerances: not a face.
+          double t0, t1;
+          if (!lineInTriangle(mesh, t, ch.origin, ch.dir, tol, t0, t1) || t1 - t0 < 100.0 * tol) continue;
+          coplanar[c].push_back({t, t0, t1});
+          extra_cuts[c].push_back(t0);
+          extra_cuts[c].push_back(t1);
+          any = true;
+        }
+      }
+    }
+    if (any) cutChains(extra_cuts);
   }
 
   // 4. Closed parts of the mesh: triangles joined across intervals bordered by exactly two of them; a part
@@ -222,21 +351,16 @@ std::vector<Edge> extractEdges(const room::Room& room, const transport::RoomGeom
     const Interval& iv = intervals[k];
     if (iv.segments.empty()) continue;
     const Chain& ch = chains[iv.chain];
-    std::vector<Face> faces;
-    for (int s : iv.segments) {
-      const Vec3 r = pos[segs[s].apex] - ch.origin;
-      faces.push_back({0.0, (r - r.dot(ch.dir) * ch.dir).normalized(), segs[s].tri});
+    std::vector<Face> faces = faceDirs(iv, ch, segs, pos);
+    const double mid_t = 0.5 * (iv.t0 + iv.t1);
+    for (const Coplanar& cp : coplanar[iv.chain]) {
+      if (mid_t < cp.t0 - tol || mid_t > cp.t1 + tol) continue;
+      const Vec3 m = ch.origin + mid_t * ch.dir, w = geometry.triangle(cp.tri).normal.cross(ch.dir).normalized();
+      for (const Vec3& dir : {w, Vec3(-w)})
+        if (pointInTriangle(mesh, cp.tri, m + 4.0 * tol * dir, 0.5 * tol)) faces.push_back({0.0, dir, cp.tri});
     }
     const Vec3 u0 = faces[0].dir, v0 = ch.dir.cross(u0);
-    for (Face& f : faces) {
-      f.theta = std::atan2(f.dir.dot(v0), f.dir.dot(u0));
-      if (f.theta < 0.0) f.theta += core::kTwoPi;
-      if (f.theta > core::kTwoPi - 1e-9) f.theta = 0.0;
-    }
-    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.theta < b.theta; });
-    faces.erase(std::unique(faces.begin(), faces.end(),
-                            [](const Face& a, const Face& b) { return b.theta - a.theta < 1e-9; }),
-                faces.end());
+    sortFaces(faces, ch.dir);
     for (std::size_t i = 0; i < faces.size(); ++i) {
       const Face& f0 = faces[i];
       const Face& fn = faces[(i + 1) % faces.size()];

@@ -46,8 +46,8 @@ class PointModel {
 std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double speed_of_sound_m_s, std::string& why_not,
                                           std::string& assumption, bool incoherent_floor = false);
 
-/// UTD on the room's mesh (first- and second-order diffraction, direct and first-order reflections, face
-/// reflection from the materials).
+/// UTD on the room's mesh (first- and second-order diffraction, each with every combination of first-order
+/// reflections around its edges, direct and first-order reflections, face reflection from the materials).
 std::unique_ptr<PointModel> utdModelFor(const room::Room& room, double speed_of_sound_m_s);
 
 /// Band average of relativeEnergy over `points` uniform frequencies in [lo, hi] and over the 6-point ball

@@ -26,8 +26,8 @@ struct RoomSimulationOptions {
   bool brute_force = false;  ///< tests only: the brute-force intersector
   /// "none": occluders are plain surfaces (doorways pass rays straight); "wbsdf": rays diffract at the
   /// room's occluders (RoomTraceOptions::occluders) and image sources do not pass through them; "utd":
-  /// geometric rays and image sources plus the UTD edge-diffraction paths of the mesh's edges (utd/paths.h)
-  /// as exact arrivals.
+  /// geometric rays and image sources plus the UTD edge-diffraction paths of the mesh's edges, with their
+  /// first-order reflections around the edges (utd/paths.h, default options), as exact arrivals.
   std::string diffraction = "none";
   int max_diffractions = 1;  ///< WBSDF scatterings per path (RoomTraceOptions::max_diffractions)
   /// "wbsdf": the rays that go on past an opening draw their direction from its far-field pattern

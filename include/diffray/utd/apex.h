@@ -11,6 +11,8 @@ namespace diffray::utd {
 /// First order: the point at arc length s_m on `edge` minimising |a − Q| + |Q − b| (closed form: the
 /// unfolded straight line). False if a and b both lie on the edge's line or the point is off the segment.
 bool apexOnEdge(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m);
+/// The same point on the edge's whole line (s_m may lie beyond the ends); false only if a and b both lie on it.
+bool apexOnLine(const Edge& edge, const Vec3& a, const Vec3& b, double& s_m);
 
 /// Second order: arc lengths s1_m, s2_m minimising |a − Q1| + |Q1 − Q2| + |Q2 − b| (convex; damped Newton).
 /// False if it does not converge or either point is off its segment.

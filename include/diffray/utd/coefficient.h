@@ -41,7 +41,14 @@ struct FaceReflection {
 ///        + R0 cot((π − β⁺)/2n) F(kL a⁻(β⁺)) + Rn cot((π + β⁺)/2n) F(kL a⁺(β⁺))],  β^∓ = φ ∓ φ′,
 /// a^±(β) = 2cos²((2nπN^± − β)/2), N^± the integer nearest to solving 2πnN^± − β = ±π. Units: D in √m.
 /// Requires n ≥ 1, k > 0, L > 0, 0 < β0 < π (throws core::InputError otherwise).
+/// `truncation` T: a finite edge's factor (paths.h); `apex_on_edge`: whether the apex lies on the edge (else
+/// on its line beyond an end, for the wave of the edge's corner). Each term is weighted (on ? 1 − |F(X)| : 0)
+/// + |F(X)|·T with its own X: near its boundary (X → 0) the term's integrand along the edge is concentrated
+/// at the apex, so it counts in full where the apex is on the edge (it makes up the geometric field's jump
+/// there) and not at all beyond an end; far from it (|F| → 1) its amplitude is smooth along the edge and it
+/// takes T. T = 1 on the edge is the plain coefficient.
 std::complex<double> wedgeCoefficient(double n, double k, double l_m, double phi, double phi_inc, double beta0,
-                                      FaceReflection r = {});
+                                      FaceReflection r = {}, std::complex<double> truncation = 1.0,
+                                      bool apex_on_edge = true);
 
 }  // namespace diffray::utd

@@ -8,7 +8,9 @@
 // Extraction: vertices are welded (tolerance relative to the room's extent); openings (Room::isOpening, an
 // open doorway) are not surfaces; triangle edges are grouped into straight chains (collinear edges that
 // touch, so T-junctions are handled), cut into elementary intervals, and around each interval the faces
-// are sorted by angle. Each angular gap between faces larger than π whose middle is air is a wedge;
+// are sorted by angle. A line lying inside another surface's triangle (the foot of a panel standing on a
+// ground meshed without the panel's vertices) has that triangle as a face on each side it covers, so the foot
+// is two inside corners, not a free edge. Each angular gap between faces larger than π whose middle is air is a wedge;
 // consecutive intervals with the same two faces are merged into one edge. Which side is air is not taken
 // from the winding: a point is air when it lies on the same side as the air point (parity of crossings with
 // the closed parts of the mesh, which is what encloses or excludes air; open parts such as thin plates
