@@ -121,7 +121,8 @@ std::vector<BtmPlateField> btmPlateSpectrum(const std::vector<double>& wavenumbe
     const Task& task = tasks[t];
     const Scene& sc = scenes[task.scene];
     if (task.pair_i < 0) {
-      for (const BtmNode& q : firstOrderNodes(sc.edges, sc.source, receiver, axis.panel_wavelength_m)) add(q.path_m, q.amplitude);
+      for (const BtmNode& q : firstOrderNodes(sc.edges, sc.source, receiver, axis.panel_wavelength_m))
+        add(q.path_m, q.amplitude);
       return;
     }
     const EdgeFrame& ei = sc.edges[static_cast<std::size_t>(task.pair_i)];

@@ -9,9 +9,9 @@ namespace diffray::reference {
 /// The field at a receiver split into its geometric and edge-diffracted parts.
 struct BtmField {
   std::complex<double> direct{0.0, 0.0};        ///< e^{−ikR}/R where the segment misses the obstacle, else 0
-  std::complex<double> specular{0.0, 0.0};      ///< the obstacle's specular images, where their reflection point is on it
+  std::complex<double> specular{0.0, 0.0};      ///< the specular images whose reflection point is on the obstacle
   std::complex<double> diffracted{0.0, 0.0};    ///< Σ over the edges of the first-order BTM term
-  std::complex<double> second_order{0.0, 0.0};  ///< Σ over ordered pairs of edges of the edge-to-edge term (0 at order 1)
+  std::complex<double> second_order{0.0, 0.0};  ///< Σ over ordered edge pairs of the edge-to-edge term (0 at order 1)
   std::complex<double> total() const { return direct + specular + diffracted + second_order; }
 };
 
