@@ -13,6 +13,8 @@
 //   btm:         the BTM edge-diffraction reference on the 4 × 2 m plate on ground, second order, 96
 //                frequencies per octave 100 Hz–4 kHz at four receivers, beside the same field one frequency
 //                at a time at three of them (btm_bench.cpp).
+//   btm-box:     the same reference on a 1.2 × 0.6 × 1.8 m rigid box on ground, second order, 96 frequencies
+//                per octave 100 Hz–4 kHz at one receiver, beside one frequency at a time (btm_bench.cpp).
 //   realtime:    the playback callback's cost per 256-frame block (3 s stereo IR, 48 kHz) against the
 //                block's duration (realtime_bench.cpp).
 //   render-is:   the light tracer's importance-sampled WBSDF shifts vs uniform shifts at equal wall time,
@@ -294,6 +296,8 @@ int main(int argc, char** argv) {
                        argc > 2 && which == "fdtd" ? std::stoi(argv[2]) : 400);
     if (which == "all" || which == "btm")  // `diffray_bench btm [PER_OCTAVE]`
       bench::benchBtm(argc > 2 && which == "btm" ? std::stoi(argv[2]) : 96);
+    if (which == "all" || which == "btm-box")  // `diffray_bench btm-box [PER_OCTAVE]`
+      bench::benchBtmBox(argc > 2 && which == "btm-box" ? std::stoi(argv[2]) : 96);
     if (which == "all" || which == "render-is") {
       bench::benchRenderIs(20'000'000);
       bench::benchRenderIsScene(std::string(DIFFRAY_BENCH_ROOMS) + "/light/cd.json", "cd", 10'000'000);

@@ -176,7 +176,7 @@ BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, cons
     const auto add = [&](double path, double amplitude) { u.second_order += std::polar(amplitude, -k * path); };
     for (std::size_t i = 0; i < edges.size(); ++i)
       for (std::size_t j = 0; j < edges.size(); ++j)
-        if (i != j) edgePairNodes(edges[i], edges[j], source, receiver, scale, wavelength, add);
+        if (i != j) edgePairNodes(edges[i], edges[j], plateFaces(edges[i]), source, receiver, scale, wavelength, add);
   }
   return u;
 }

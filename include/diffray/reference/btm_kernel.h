@@ -93,6 +93,33 @@ void btmGradedNodes(double apex, double from, double to, double scale, double wa
   }
 }
 
+/// A point the graded rule grades toward (btmGradedNodesToward): where along the edge (m), and the first
+/// panel there (m).
+struct BtmGradePoint {
+  double at, first_panel_m;
+};
+
+/// The graded rule over [from, to] (from < to) toward `count` points at once: the stretch is cut halfway
+/// between neighbouring points and each piece is graded from its own point (btmGradedNodes, which grades
+/// both ways from a point inside its piece). Pieces are visited in the points' order; of equal points the
+/// last grades the piece around them with its own first panel.
+template <class Visit>
+void btmGradedNodesToward(const BtmGradePoint* points, int count, double from, double to, double scale,
+                          double wavelength, Visit&& visit) {
+  for (int k = 0; k < count; ++k) {
+    const double p = points[k].at;
+    double lo = from, hi = to;
+    bool later_equal = false;
+    for (int m = 0; m < count; ++m) {
+      const double q = points[m].at;
+      if (q < p) lo = std::max(lo, 0.5 * (p + q));
+      if (q > p) hi = std::min(hi, 0.5 * (p + q));
+      if (q == p && m > k) later_equal = true;
+    }
+    if (!later_equal && lo < hi) btmGradedNodes(p, lo, hi, scale, wavelength, points[k].first_panel_m, visit);
+  }
+}
+
 /// ∫ g over [from, to] (metres along the edge; from < to or from > to) with panels graded from the apex, as
 /// in the header. g(z) returns std::complex<double>.
 template <class G>

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "diffray/core/math.h"
+#include "diffray/reference/btm_field.h"
 
 namespace diffray::reference {
 
@@ -33,14 +34,9 @@ struct BtmPlate {
   std::vector<core::Vec3> vertices;
 };
 
-/// The parts of the field at `receiver` of a unit point source at `source`.
-struct BtmPlateField {
-  std::complex<double> direct{0.0, 0.0};    ///< e^{−ikR}/R where the segment misses the plate, else 0
-  std::complex<double> specular{0.0, 0.0};  ///< the plate's image, where its reflection point is on the plate
-  std::complex<double> diffracted{0.0, 0.0};  ///< Σ over the edges of the first-order BTM term
-  std::complex<double> second_order{0.0, 0.0};  ///< Σ over ordered pairs of edges of u₂ (0 at order 1)
-  std::complex<double> total() const { return direct + specular + diffracted + second_order; }
-};
+/// The parts of the field at `receiver` of a unit point source at `source` (btm_field.h): `specular` is the
+/// plate's image, `second_order` the sum over ordered pairs of edges of u₂.
+using BtmPlateField = BtmField;
 
 /// The field to `order` (1 or 2) in edge diffraction.
 BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, const core::Vec3& source,
