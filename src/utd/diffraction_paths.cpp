@@ -181,6 +181,7 @@ void UtdModel::tryCandidate(const Candidate& c, const Vec3& s, const Vec3& r, st
     p -= signedDistance(pl, p) * pl.normal;
     const int tri = triangleAt(k, p);
     if (tri < 0 || crossesSurfaceAt(pl, p, x, y)) return false;
+    if ((p - x).norm() > offsetAt(p) && (p - y).norm() > offsetAt(p) && onEdge(p)) return false;
     v.push_back({p, -1, tri, side * offsetAt(p) * pl.normal});
     return true;
   };

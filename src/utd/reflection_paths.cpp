@@ -36,6 +36,16 @@ bool UtdModel::crossesSurfaceAt(const transport::MirrorPlane& reflecting, const 
   return false;
 }
 
+bool UtdModel::onEdge(const Vec3& p) const {
+  const double tol = offsetAt(p);
+  for (const Edge& e : edges_) {
+    const Vec3 d = e.end - e.start;
+    const double t = std::clamp((p - e.start).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    if ((e.start + t * d - p).norm() <= tol) return true;
+  }
+  return false;
+}
+
 void UtdModel::addReflections(const Vec3& s, const Vec3& r, std::vector<Path>& out) const {
   const auto& planes = geometry_.planes();
   for (std::size_t k = 0; k < planes.size(); ++k) {

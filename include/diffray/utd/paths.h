@@ -30,7 +30,11 @@
 // the unfolded ones (the image principle: a ray reflected off a plane continues straight from the image);
 // the pressure takes each face's R as well. Each reflection point must lie on a triangle of its plane, the
 // points before and after it on the plane's same side, and every leg must be clear. A face that holds the
-// edge is not a reflection for it (its reflection is part of D). Where the reflection point falls on the apex
+// edge is not a reflection for it (its reflection is part of D), and neither is a reflection point on another
+// diffracting edge (other than the apex itself): a path that grazes one face of a box and "reflects" off the
+// next face at their common edge is that edge's diffraction, and counting it again would triple each
+// edge-to-edge path around a box. A crease that does not diffract (a barrier's foot on the ground) reflects:
+// the path runs on through the image of what stands on it. Where the reflection point falls on the apex
 // (an edge standing on the reflecting plane, the apex at its foot), the path through the edge and its
 // mirror image is one path: it is kept once, as the reflection before the apex. A second-order path takes
 // at most UtdOptions::second_order_reflections of its three. A listener on the incident shadow boundary of
@@ -176,6 +180,9 @@ class UtdModel {
   /// at its foot (a visibility test from a point lifted off p cannot see it).
   bool crossesSurfaceAt(const transport::MirrorPlane& reflecting, const core::Vec3& p, const core::Vec3& s,
                         const core::Vec3& r) const;
+  /// Whether p lies on one of the extracted edges (within offsetAt(p)): a reflection there is part of that
+  /// edge's diffraction, not a specular path of its own.
+  bool onEdge(const core::Vec3& p) const;
   // Diffraction (diffraction_paths.cpp).
   /// Every diffraction path of `order` (1 or 2), with reflections around the edges if enabled.
   void addDiffractions(int order, const core::Vec3& s, const core::Vec3& r, std::vector<Path>& out) const;
