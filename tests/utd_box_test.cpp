@@ -57,25 +57,16 @@ TEST(UtdBox, BehindABoxMatchesTheBtmReference) {
   const utd::UtdModel model(room, geometry, o);
   EXPECT_EQ(model.edges().size(), 12u);
   for (const Vec3& r : listeners) {
-    std::vector<double> f, k;
-    for (double band : bands)
-      for (int j = 0; j < points; ++j) {
-        const double lo = band / std::sqrt(2.0), hi = band * std::sqrt(2.0);
-        f.push_back(lo + (j + 0.5) * (hi - lo) / points);
-        k.push_back(kTwoPi * f.back() / kC);
-      }
+    const std::vector<double> f = octaveGrid(bands, points);
+    std::vector<double> k;
+    for (double fi : f) k.push_back(kTwoPi * fi / kC);
     const auto exact = ref::btmBoxSpectrum(k, box, std::nan(""), s, r, 2);
     const auto paths = model.paths(s, r);
     for (const auto& p : paths) EXPECT_EQ(p.kind, utd::PathKind::Diffraction) << "no geometric path behind the box";
     std::printf("box, listener (%.1f, %.1f, %.1f), %zu paths, UTD - BTM:", r.x(), r.y(), r.z(), paths.size());
+    const std::vector<double> diffs = utdMinusBtmDb(model, paths, f, exact, points);
     for (std::size_t b = 0; b < bands.size(); ++b) {
-      double e_utd = 0.0, e_btm = 0.0;
-      for (int j = 0; j < points; ++j) {
-        const std::size_t i = b * points + j;
-        e_utd += std::norm(model.total(paths, f[i], kC));
-        e_btm += std::norm(exact[i].total());
-      }
-      const double diff = 10.0 * std::log10(e_utd / e_btm);
+      const double diff = diffs[b];
       std::printf(" %g Hz %+.2f", bands[b], diff);
       EXPECT_NEAR(diff, 0.0, 2.0) << "listener " << r.transpose() << " band " << bands[b];
     }
