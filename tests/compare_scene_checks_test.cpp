@@ -118,6 +118,17 @@ TEST(CompareSceneChecks, AListenerBelowTheGroundIsWarnedAbout) {
   EXPECT_EQ(dc::hiddenListenerWarnings(withListener("doorway.json", "cellar", Vec3(2.5, 0, -0.5))).size(), 1u);
 }
 
+TEST(CompareSceneChecks, AListenerBehindAClosedObjectIsNotOutside) {
+  // Behind the cupboard (a closed box on the ground) the listeners hear what diffracts round it: no warning.
+  // Inside the box, or below the ground beside it, a listener is hidden: warned about.
+  EXPECT_TRUE(dc::hiddenListenerWarnings(dr::loadRoom(kRooms + "cupboard.json")).empty());
+  const auto inside = dc::hiddenListenerWarnings(withListener("cupboard.json", "in", Vec3(0.1, 0.1, 0.9)));
+  ASSERT_EQ(inside.size(), 1u);
+  EXPECT_NE(inside[0].find("listener in"), std::string::npos) << inside[0];
+  EXPECT_NE(inside[0].find("cupboard/"), std::string::npos) << inside[0];
+  EXPECT_EQ(dc::hiddenListenerWarnings(withListener("cupboard.json", "under", Vec3(2, 2, -0.5))).size(), 1u);
+}
+
 TEST(CompareSceneChecks, WrapDegreesIntoTheHalfOpenCircle) {
   EXPECT_DOUBLE_EQ(dc::wrapDegrees(0.0), 0.0);
   EXPECT_DOUBLE_EQ(dc::wrapDegrees(180.0), 180.0);

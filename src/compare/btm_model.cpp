@@ -1,4 +1,4 @@
-// compare's BTM exact model for a rigid plate, free or on a rigid ground (see btm_model.h).
+// compare's BTM exact model for a rigid plate or a rigid box, free or on a rigid ground (see btm_model.h).
 #include "diffray/compare/btm_model.h"
 
 #include <algorithm>
@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "diffray/core/error.h"
+#include "diffray/reference/btm_box.h"
 #include "diffray/reference/btm_spectrum.h"
+#include "diffray/room/json_fields.h"
 
 namespace diffray::compare {
 
@@ -17,14 +20,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-class BtmPlateModel : public PointModel {
+// The part common to both objects: the frequencies up to the size limit handed to the reference at once,
+// its total field made relative to the free field, p/p_free = u·R·e^{ikR} (time factor e^{iωt}), NaN above.
+class BtmModel : public PointModel {
  public:
-  BtmPlateModel(reference::BtmPlate plate, double ground_z, double c, double f_max)
-      : plate_(std::move(plate)), ground_z_(ground_z), c_(c), f_max_(f_max) {}
+  BtmModel(double ground_z, double c, double f_max) : ground_z_(ground_z), c_(c), f_max_(f_max) {}
   std::string name() const override { return "exact"; }
   std::vector<std::complex<double>> relativePressure(const Vec3& s, const Vec3& l, const std::vector<double>& f) const override {
-    const std::complex<double> none(std::nan(""), std::nan(""));
-    std::vector<std::complex<double>> out(f.size(), none);
+    std::vector<std::complex<double>> out(f.size(), std::complex<double>(std::nan(""), std::nan("")));
     std::vector<double> k;
     std::vector<std::size_t> at;
     for (std::size_t j = 0; j < f.size(); ++j)
@@ -33,17 +36,51 @@ class BtmPlateModel : public PointModel {
         at.push_back(j);
       }
     if (k.empty()) return out;
-    const std::vector<reference::BtmPlateField> u = reference::btmPlateSpectrum(k, plate_, ground_z_, s, l, 2);
+    const std::vector<reference::BtmField> u = spectrum(k, s, l);
     const double r = (l - s).norm();
-    // p/p_free = u·R·e^{ikR} (time factor e^{iωt}).
     for (std::size_t i = 0; i < at.size(); ++i) out[at[i]] = u[i].total() * std::polar(r, k[i] * r);
     return out;
   }
 
+ protected:
+  /// The reference's field at each wavenumber, on the ground ground_z_ (NaN: none).
+  virtual std::vector<reference::BtmField> spectrum(const std::vector<double>& k, const Vec3& s, const Vec3& l) const = 0;
+  double ground_z_;
+
  private:
-  reference::BtmPlate plate_;
-  double ground_z_, c_, f_max_;
+  double c_, f_max_;
 };
+
+class BtmPlateModel : public BtmModel {
+ public:
+  BtmPlateModel(reference::BtmPlate plate, double ground_z, double c, double f_max)
+      : BtmModel(ground_z, c, f_max), plate_(std::move(plate)) {}
+
+ private:
+  std::vector<reference::BtmField> spectrum(const std::vector<double>& k, const Vec3& s, const Vec3& l) const override {
+    return reference::btmPlateSpectrum(k, plate_, ground_z_, s, l, 2);
+  }
+  reference::BtmPlate plate_;
+};
+
+class BtmBoxModel : public BtmModel {
+ public:
+  BtmBoxModel(reference::BtmBox box, double ground_z, double c, double f_max) : BtmModel(ground_z, c, f_max), box_(box) {}
+
+ private:
+  std::vector<reference::BtmField> spectrum(const std::vector<double>& k, const Vec3& s, const Vec3& l) const override {
+    return reference::btmBoxSpectrum(k, box_, ground_z_, s, l, 2);
+  }
+  reference::BtmBox box_;
+};
+
+double triangleArea(const room::Room& room, std::size_t t) {
+  const auto& tri = room.mesh.triangles[t];
+  const Vec3& a = room.mesh.vertices[static_cast<std::size_t>(tri[0])];
+  const Vec3& b = room.mesh.vertices[static_cast<std::size_t>(tri[1])];
+  const Vec3& c = room.mesh.vertices[static_cast<std::size_t>(tri[2])];
+  return 0.5 * (b - a).cross(c - a).norm();
+}
 
 // The distinct vertices of the triangles of `group`, in order around their centroid (a convex polygon).
 std::vector<Vec3> groupPolygon(const room::Room& room, const std::string& group) {
@@ -140,6 +177,119 @@ std::unique_ptr<PointModel> btmModelFor(const room::Room& room, double c, std::s
                 ground ? ", its ground mirror included," : "", kBtmMaxPerimeterWavelengths);
   assumption = buf;
   return std::make_unique<BtmPlateModel>(std::move(plate), ground ? foot : std::nan(""), c, f_max);
+}
+
+std::unique_ptr<PointModel> btmBoxModelFor(const room::Room& room, double c, std::string& why_not, std::string& assumption) {
+  if (!room.occluders.empty()) {
+    why_not = "the BTM box reference fits a scene with no occluders";
+    return nullptr;
+  }
+  const geometry::Mesh& mesh = room.mesh;
+  if (mesh.triangles.empty()) {
+    why_not = "the scene has no geometry";
+    return nullptr;
+  }
+  double scale = 0.0, floor_z = 1e300;
+  for (const Vec3& v : mesh.vertices) {
+    scale = std::max(scale, v.cwiseAbs().maxCoeff());
+    floor_z = std::min(floor_z, v.z());
+  }
+  const double tol = 1e-9 * (1.0 + scale);
+  const auto vertex = [&](std::size_t t, int i) -> const Vec3& {
+    return mesh.vertices[static_cast<std::size_t>(mesh.triangles[t][static_cast<std::size_t>(i)])];
+  };
+  const auto flat = [&](std::size_t t) {
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(vertex(t, i).z() - floor_z) > tol) return false;
+    return true;
+  };
+  // The box: the bounds of every triangle not in the lowest horizontal plane.
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  bool any = false;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (!rigid(room, mesh.object_of_triangle[t])) {
+      why_not = "the BTM reference is for rigid surfaces (absorption 0 in every band); " + room.group_of_triangle[t] + " absorbs";
+      return nullptr;
+    }
+    if (flat(t)) continue;
+    any = true;
+    for (int i = 0; i < 3; ++i) {
+      lo = lo.cwiseMin(vertex(t, i));
+      hi = hi.cwiseMax(vertex(t, i));
+    }
+  }
+  if (!any || std::abs(lo.z() - floor_z) > tol) {
+    why_not = any ? "the BTM box reference fits a box standing on the lowest plane of the scene (the ground or its own bottom)"
+                  : "the exact references fit one rigid box or one occluder; every surface of this scene lies in one plane";
+    return nullptr;
+  }
+  // Every other triangle on one of the box's five upper faces (2·axis + side; 4 is the bottom), which they cover.
+  double area[6] = {0, 0, 0, 0, 0, 0};
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (flat(t)) continue;
+    int face = -1;
+    for (int f = 0; f < 6 && face < 0; ++f) {
+      const double plane = f % 2 ? hi[f / 2] : lo[f / 2];
+      if (std::abs(vertex(t, 0)[f / 2] - plane) <= tol && std::abs(vertex(t, 1)[f / 2] - plane) <= tol &&
+          std::abs(vertex(t, 2)[f / 2] - plane) <= tol)
+        face = f;
+    }
+    if (face < 0) {
+      why_not = "the BTM box reference fits one axis-aligned box (alone or on a ground); triangle " + std::to_string(t) +
+                " (" + room.group_of_triangle[t] + ") is not on a face of the box from " + room::formatNumber(lo.x()) +
+                ", " + room::formatNumber(lo.y()) + ", " + room::formatNumber(lo.z()) + " to " +
+                room::formatNumber(hi.x()) + ", " + room::formatNumber(hi.y()) + ", " + room::formatNumber(hi.z()) + " m";
+      return nullptr;
+    }
+    area[face] += triangleArea(room, t);
+  }
+  // The lowest plane: the box's bottom alone (a free box) or a ground reaching beyond it.
+  const Vec3 size = hi - lo;
+  bool ground = false;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (!flat(t)) continue;
+    bool inside = true;
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 2; ++a) inside = inside && vertex(t, i)[a] >= lo[a] - tol && vertex(t, i)[a] <= hi[a] + tol;
+    if (inside)
+      area[4] += triangleArea(room, t);
+    else
+      ground = true;
+  }
+  static const char* face_name[6] = {"x-", "x+", "y-", "y+", "bottom", "top"};
+  for (int f = 0; f < 6; ++f) {
+    if (f == 4 && ground) continue;
+    const double want = size[(f / 2 + 1) % 3] * size[(f / 2 + 2) % 3];
+    if (std::abs(area[f] - want) > 1e-6 * want) {
+      why_not = std::string("the BTM box reference fits a closed box; its ") + face_name[f] + " face is " +
+                room::formatNumber(area[f]) + " m² covered of " + room::formatNumber(want) + " m²";
+      return nullptr;
+    }
+  }
+  const reference::BtmBox box{lo, hi};
+  const auto insideBox = [&](const Vec3& p, double margin) {
+    return (p.array() > (lo.array() - margin)).all() && (p.array() < (hi.array() + margin)).all();
+  };
+  for (const room::Source& s : room.sources)
+    if (insideBox(s.position_m, 0.0))
+      throw core::InputError(room.file, "source " + s.name + " lies inside or on the box: move it off");
+  for (const room::Listener& l : room.listeners) {
+    const Vec3 nearest = l.position_m.cwiseMax(lo).cwiseMin(hi);
+    if ((nearest - l.position_m).norm() < l.radius_m)
+      throw core::InputError(room.file, "listener " + l.name + ": its sphere (radius " + room::formatNumber(l.radius_m) +
+                                            " m) meets the box: move it off");
+  }
+  // The length of the diffracting edges (on a ground, of the box joined with its mirror image).
+  const double edges = 4.0 * (size.x() + size.y() + (ground ? 2.0 : 1.0) * size.z());
+  const double f_max = kBtmMaxBoxEdgeWavelengths * c / edges;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "exact: BTM edge diffraction to second order (Svensson et al. 1999) of the rigid %.3g x %.3g x %.3g m box%s, "
+                "up to %.0f Hz (its edges%s up to %.0f wavelengths long in all)",
+                size.x(), size.y(), size.z(), ground ? " on a rigid ground (image principle)" : " in free field", f_max,
+                ground ? ", with their ground mirrors," : "", kBtmMaxBoxEdgeWavelengths);
+  assumption = buf;
+  return std::make_unique<BtmBoxModel>(box, ground ? floor_z : std::nan(""), c, f_max);
 }
 
 }  // namespace diffray::compare

@@ -129,6 +129,7 @@ class UtdPointModel : public PointModel {
 
 std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double c, std::string& why_not,
                                           std::string& assumption, bool incoherent_floor) {
+  if (room.occluders.empty()) return btmBoxModelFor(room, c, why_not, assumption);
   if (room.occluders.size() != 1) {
     why_not = "the exact references fit a scene with exactly one occluder (an edge/barrier or a door/slit); this one has " +
               std::to_string(room.occluders.size());

@@ -1,7 +1,10 @@
 #include "diffray/compare/scene_checks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <numeric>
 #include <set>
 #include <vector>
 
@@ -59,6 +62,53 @@ bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
   return false;
 }
 
+// Per triangle of `solid`: whether it bounds a closed object that p lies outside of. Its part (triangles
+// joined across shared edges, vertices matched on a grid of `tol`) is closed when every edge of the part is
+// shared by an even number of its triangles; p is outside when rays from p along three fixed directions
+// cross the part an even number of times (majority). Behind a face of such an object (a cupboard) a
+// listener is reached round it by diffraction, unlike one below the ground.
+std::vector<char> outsideClosedObject(const std::vector<Tri>& solid, const Vec3& p, double tol) {
+  using Key = std::array<long long, 3>;
+  const auto key = [&](const Vec3& v) { return Key{std::llround(v.x() / tol), std::llround(v.y() / tol), std::llround(v.z() / tol)}; };
+  std::vector<int> parent(solid.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  std::map<std::pair<Key, Key>, std::vector<int>> edges;
+  for (std::size_t t = 0; t < solid.size(); ++t) {
+    const Key k[3] = {key(solid[t].a), key(solid[t].b), key(solid[t].c)};
+    for (int i = 0; i < 3; ++i) edges[std::minmax(k[i], k[(i + 1) % 3])].push_back(static_cast<int>(t));
+  }
+  for (const auto& [edge, tris] : edges)
+    for (int t : tris) parent[static_cast<std::size_t>(find(t))] = find(tris[0]);
+  std::vector<char> closed(solid.size(), 1);
+  for (const auto& [edge, tris] : edges) {
+    std::map<int, int> count;
+    for (int t : tris) ++count[find(t)];
+    for (const auto& [part, n] : count)
+      if (n % 2 != 0) closed[static_cast<std::size_t>(part)] = 0;
+  }
+  static const Vec3 dirs[3] = {Vec3(0.5773, 0.5781, 0.5765).normalized(), Vec3(-0.3111, 0.8123, -0.4932).normalized(),
+                               Vec3(0.7071, -0.2017, 0.6777).normalized()};
+  std::map<int, int> odd;  // per closed part: how many of the three rays cross it an odd number of times
+  for (const Vec3& d : dirs) {
+    std::map<int, int> crossings;
+    for (std::size_t t = 0; t < solid.size(); ++t)
+      if (closed[static_cast<std::size_t>(find(static_cast<int>(t)))] &&
+          room::crossesTriangle(p, d, solid[t].a, solid[t].b, solid[t].c))
+        ++crossings[find(static_cast<int>(t))];
+    for (const auto& [part, n] : crossings) odd[part] += n % 2;
+  }
+  std::vector<char> out(solid.size(), 0);
+  for (std::size_t t = 0; t < solid.size(); ++t) {
+    const int part = find(static_cast<int>(t));
+    out[t] = closed[static_cast<std::size_t>(part)] && odd[part] < 2;
+  }
+  return out;
+}
+
 }  // namespace
 
 double wrapDegrees(double deg) {
@@ -96,8 +146,10 @@ std::vector<std::string> hiddenListenerWarnings(const room::Room& room) {
   const double tol = 1e-9 * sceneScale(room);
   const std::vector<Tri> solid = solidTriangles(room);
   for (const room::Listener& l : room.listeners) {
-    for (const Tri& t : solid) {
-      if (inOccluderPlane(room, t, tol)) continue;
+    const std::vector<char> outside = outsideClosedObject(solid, l.position_m, 1e3 * tol);
+    for (std::size_t i = 0; i < solid.size(); ++i) {
+      const Tri& t = solid[i];
+      if (outside[i] || inOccluderPlane(room, t, tol)) continue;
       const Vec3 n = (t.b - t.a).cross(t.c - t.a).normalized();
       const double dl = (l.position_m - t.a).dot(n), ds = (s.position_m - t.a).dot(n);
       if (!(dl * ds < 0.0)) continue;

@@ -20,6 +20,7 @@ void checkListeners(const room::Room& room);
 /// One warning per listener hidden from source 0 behind a surface that is not in an occluder's plane: its
 /// foot on the surface's plane lies inside the surface and the source is on the plane's other side (a
 /// listener below the ground). Every model gives it no sound, or only what leaks round the surface's edges.
+/// A face of a closed object the listener is outside of (a cupboard it stands behind) is no such surface.
 std::vector<std::string> hiddenListenerWarnings(const room::Room& room);
 
 /// The rectangle every aimed WBSDF ray goes through (transport::EmissionTarget's frame).
