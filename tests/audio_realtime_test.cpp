@@ -2,8 +2,9 @@
 // PortAudio calls) on its own thread. Checked: the wet output equals direct convolution of the dry file
 // (tests/dsp_oracle.h; Diracs in the dry signal give the IR back) at two callback sizes; an underrun gives
 // silence in place of the missing dry frames and is counted; the SPSC ring delivers a sequence in order
-// across threads; and no operator new/delete runs inside a callback over hundreds of callbacks that cross
-// every tail stage's block boundary (a counting global operator new, active only on the callback thread
+// across threads; the closing door's crossfading renderer equals Σ_k g_k(n)·(h_k ∗ x)[n] by direct
+// convolution with hat gains written here; and no operator new/delete runs inside a callback (plain and
+// crossfading) over hundreds of callbacks that cross every tail stage's block boundary (a counting global operator new, active only on the callback thread
 // between the backend's hooks). Locks: none by construction (code review: render() uses std::atomic and
 // the convolver, which uses no mutex outside init()); not checked at run time.
 #include <gtest/gtest.h>
@@ -132,6 +133,16 @@ struct DryFixture {
   }
 };
 
+/// Streams the dry file at `path` through `renderer` on the test backend; the reader thread joined.
+audio::TestBackendRun playThrough(audio::PlaybackRenderer& renderer, const std::string& path,
+                                  const audio::TestBackendOptions& options) {
+  audio::AudioReader reader(path);
+  audio::DryFileStreamer streamer(reader, renderer);
+  const audio::TestBackendRun run = audio::runTestBackend(renderer, options);
+  streamer.wait();
+  return run;
+}
+
 TEST(RealtimePlayback, TestBackendOutputEqualsDirectConvolution) {
   const TempDir dir("rt_convolution");
   std::mt19937 rng(424242);
@@ -146,12 +157,9 @@ TEST(RealtimePlayback, TestBackendOutputEqualsDirectConvolution) {
     config.ring_frames = 1024;  // smaller than the file: the reader thread must stream
     audio::PlaybackRenderer renderer(ir, 2, config);
     ASSERT_EQ(renderer.convolver().outputChannels(), 2);
-    audio::AudioReader reader(dry.path);
-    audio::DryFileStreamer streamer(reader, renderer);
     audio::TestBackendOptions options;
     options.frames_per_callback = callback_frames;
-    const audio::TestBackendRun run = audio::runTestBackend(renderer, options);
-    streamer.wait();
+    const audio::TestBackendRun run = playThrough(renderer, dry.path, options);
     EXPECT_EQ(renderer.underruns(), 0);
     EXPECT_TRUE(renderer.finished());
     const size_t frames = run.output.size() / 2;
@@ -161,6 +169,53 @@ TEST(RealtimePlayback, TestBackendOutputEqualsDirectConvolution) {
     EXPECT_LE(relativeError(channelOf(run.output, 1, wet_frames), want_r), 1e-5) << callback_frames;
     // The Diracs: the IR itself, in the gap before the noise starts.
     for (size_t k = 0; k + 500 < 3000; ++k) ASSERT_NEAR(run.output[2 * (500 + k) + 1], ir[1][k], 1e-5) << k;
+    for (size_t f = wet_frames; f < frames; ++f) ASSERT_NEAR(run.output[2 * f], 0.0f, 1e-5);
+  }
+}
+
+/// The hat gain of IR k at frame n for key frames t (1 at t_k, linear to 0 at its neighbours; the first
+/// and last IR 1 beyond the ends), written out here.
+double hatGain(const std::vector<long>& t, size_t k, long n) {
+  if (n <= t[k]) return k == 0 ? 1.0 : (n <= t[k - 1] ? 0.0 : double(n - t[k - 1]) / double(t[k] - t[k - 1]));
+  return k + 1 == t.size() ? 1.0 : (n >= t[k + 1] ? 0.0 : double(t[k + 1] - n) / double(t[k + 1] - t[k]));
+}
+
+TEST(RealtimePlayback, CrossfadingRendererEqualsCrossfadedDirectConvolutions) {
+  // The closing door's real-time renderer: the stereo dry file averaged to one channel, convolved with three
+  // two-channel IRs (long enough for the non-uniform engine's tail stages at block 64) and crossfaded at
+  // key frames 1000, 2500 and 4000; against Σ_k g_k(n)·(h_k ∗ x)[n] by direct convolution.
+  const TempDir dir("rt_crossfade");
+  std::mt19937 rng(515151);
+  const DryFixture dry(dir.path, rng);
+  const std::vector<long> keys{1000, 2500, 4000};
+  std::vector<std::vector<std::vector<float>>> irs;
+  for (long length : {9000L, 12000L, 7000L}) irs.push_back({uniformNoise(rng, length), uniformNoise(rng, length)});
+  std::vector<float> mono(dry.left.size());
+  for (size_t i = 0; i < mono.size(); ++i) mono[i] = 0.5f * (dry.left[i] + dry.right[i]);
+  const size_t wet_frames = mono.size() + 12000 - 1;
+  std::vector<std::vector<double>> want(2, std::vector<double>(wet_frames, 0.0));
+  for (size_t k = 0; k < irs.size(); ++k)
+    for (int c = 0; c < 2; ++c) {
+      const std::vector<double> z = directConvolution(mono, irs[k][static_cast<size_t>(c)]);
+      for (size_t n = 0; n < z.size(); ++n) want[static_cast<size_t>(c)][n] += hatGain(keys, k, static_cast<long>(n)) * z[n];
+    }
+  for (long callback_frames : {64L, 100L}) {
+    audio::PlaybackConfig config;
+    config.block_frames = 64;
+    config.ring_frames = 1024;
+    audio::PlaybackRenderer renderer(irs, keys, 2, config);
+    ASSERT_TRUE(renderer.crossfading());
+    ASSERT_EQ(renderer.outputChannels(), 2);
+    EXPECT_EQ(renderer.irFrames(), 12000);
+    audio::TestBackendOptions options;
+    options.frames_per_callback = callback_frames;
+    const audio::TestBackendRun run = playThrough(renderer, dry.path, options);
+    EXPECT_EQ(renderer.underruns(), 0);
+    EXPECT_TRUE(renderer.finished());
+    const size_t frames = run.output.size() / 2;
+    ASSERT_GE(frames, wet_frames);
+    EXPECT_LE(relativeError(channelOf(run.output, 0, wet_frames), want[0]), 1e-5) << callback_frames;
+    EXPECT_LE(relativeError(channelOf(run.output, 1, wet_frames), want[1]), 1e-5) << callback_frames;
     for (size_t f = wet_frames; f < frames; ++f) ASSERT_NEAR(run.output[2 * f], 0.0f, 1e-5);
   }
 }
@@ -257,20 +312,43 @@ TEST(RealtimeAllocation, CallbackAllocatesNothingAcrossTailStageBoundaries) {
   config.max_callback_frames = 80;  // callbacks of 100 frames are processed in two pieces
   audio::PlaybackRenderer renderer(ir, 2, config);
   ASSERT_EQ(renderer.convolver().outputChannels(), 2);
-  audio::AudioReader reader(dry.path);
-  audio::DryFileStreamer streamer(reader, renderer);
   audio::TestBackendOptions options;
   options.frames_per_callback = 100;
   options.keep_output = false;
   options.before_callback = startCounting;
   options.after_callback = stopCounting;
-  const audio::TestBackendRun run = audio::runTestBackend(renderer, options);
-  streamer.wait();
+  const audio::TestBackendRun run = playThrough(renderer, dry.path, options);
   // 26000 frames: stage 1 (block 512) fires ~50 times, stage 2 (block 4096) ~6 times.
   EXPECT_GE(run.callbacks, 259);
   EXPECT_TRUE(renderer.finished());
   EXPECT_EQ(g_news.load(), 0) << "operator new inside the audio callback";
   EXPECT_EQ(g_deletes.load(), 0) << "operator delete inside the audio callback";
+}
+
+TEST(RealtimeAllocation, CrossfadingCallbackAllocatesNothing) {
+  // The closing door's renderer, over callbacks that cross every key frame and tail-stage boundary.
+  const TempDir dir("rt_crossfade_allocation");
+  std::mt19937 rng(79);
+  const DryFixture dry(dir.path, rng);
+  std::vector<std::vector<std::vector<float>>> irs;
+  for (long length : {20000L, 15000L, 18000L}) irs.push_back({uniformNoise(rng, length)});
+  audio::PlaybackConfig config;
+  config.block_frames = 64;
+  config.ring_frames = 512;
+  config.max_callback_frames = 80;
+  audio::PlaybackRenderer renderer(irs, {500, 2500, 4500}, 2, config);
+  audio::TestBackendOptions options;
+  options.frames_per_callback = 100;
+  options.keep_output = false;
+  options.before_callback = startCounting;
+  options.after_callback = stopCounting;
+  g_news = 0;
+  g_deletes = 0;
+  const audio::TestBackendRun run = playThrough(renderer, dry.path, options);
+  EXPECT_GE(run.callbacks, 259);  // 26000 frames
+  EXPECT_TRUE(renderer.finished());
+  EXPECT_EQ(g_news.load(), 0) << "operator new inside the crossfading callback";
+  EXPECT_EQ(g_deletes.load(), 0) << "operator delete inside the crossfading callback";
 }
 
 // The closing door's time-varying convolver (dsp/crossfade_convolver.h) promises the same: process() and

@@ -1,4 +1,5 @@
-// The crossfading convolver against a brute-force oracle written here (no code shared with dsp/): direct
+// The crossfading convolver (both engines: uniformly and non-uniformly partitioned) against a brute-force
+// oracle written here (no code shared with dsp/): direct
 // time-domain convolution of the input with every IR, weighted by hat-function gains computed from
 // "where does n lie between the key frames" (linear interpolation of the IR index), summed. Random block
 // sizes, call sizes, key frames and IR lengths; the lazy start and stop of the convolvers checked where a
@@ -19,6 +20,7 @@
 namespace {
 
 using diffray::dsp::CrossfadeConvolver;
+using diffray::dsp::NonUniformCrossfadeConvolver;
 using Irs = std::vector<std::vector<std::vector<float>>>;  // [k][channel][sample]
 
 std::vector<float> noise(std::mt19937& rng, size_t n, float amplitude = 1.0f) {
@@ -79,7 +81,8 @@ std::vector<double> oracle(const std::vector<float>& in, int in_channels, const 
 
 /// Feeds `in` through `conv` in calls of random size (0 … 3 blocks), then flushes tailFrames(); returns
 /// all output. Records the largest activeConvolvers() seen between calls in `max_active` if given.
-std::vector<float> runInRandomCalls(CrossfadeConvolver& conv, const std::vector<float>& in, std::mt19937& rng,
+template <class Conv>
+std::vector<float> runInRandomCalls(Conv& conv, const std::vector<float>& in, std::mt19937& rng,
                                     int* max_active = nullptr) {
   const long cin = conv.inputChannels(), cout = conv.outputChannels();
   const long frames = static_cast<long>(in.size()) / cin;
@@ -136,17 +139,21 @@ TEST(Crossfade, MatchesOracleWithRandomBlocksCallsAndKeyFrames) {
     while (static_cast<int>(t.size()) < K) t.push_back(t.back() + spacing(rng));
     const long frames = x_len(rng);
     const std::vector<float> in = noise(rng, static_cast<size_t>(frames * p.in_channels));
-    CrossfadeConvolver conv;
-    conv.init(block, irs, p.in_channels, t);
-    const std::vector<float> y = runInRandomCalls(conv, in, rng);
     long longest = 0;
     for (const auto& ir : irs) longest = std::max(longest, static_cast<long>(ir[0].size()));
     // The oracle over the whole linear convolution: past input + longest IR − 1 every term is zero.
     const std::vector<double> ref = oracle(in, p.in_channels, irs, t, frames + longest - 1);
-    ASSERT_LE(y.size(), ref.size());
-    const double rel = relativeError(y, ref);
-    worst = std::max(worst, rel);
-    EXPECT_LE(rel, 1e-5) << "trial " << trial << ": block " << block << ", K " << K << ", input " << frames;
+    // Both engines: uniformly partitioned (the offline door) and non-uniform (the real-time door).
+    CrossfadeConvolver conv;
+    conv.init(block, irs, p.in_channels, t);
+    NonUniformCrossfadeConvolver non_uniform;
+    non_uniform.init(block, irs, p.in_channels, t);
+    for (const std::vector<float>& y : {runInRandomCalls(conv, in, rng), runInRandomCalls(non_uniform, in, rng)}) {
+      ASSERT_LE(y.size(), ref.size());
+      const double rel = relativeError(y, ref);
+      worst = std::max(worst, rel);
+      EXPECT_LE(rel, 1e-5) << "trial " << trial << ": block " << block << ", K " << K << ", input " << frames;
+    }
   }
   std::cout << "[ measured ] worst error / output peak over 24 trials: " << worst << "\n";
 }

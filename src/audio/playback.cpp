@@ -9,17 +9,44 @@
 
 namespace diffray::audio {
 
+namespace {
+
+void requireConfig(const PlaybackConfig& config) {
+  core::requireFinite("gain", config.gain_db);
+  if (config.max_callback_frames < 1 || config.ring_frames < 1)
+    throw core::InputError("playback", "the ring and the callback scratch need at least one frame");
+}
+
+}  // namespace
+
 PlaybackRenderer::PlaybackRenderer(const std::vector<std::vector<float>>& ir, int input_channels,
                                    const PlaybackConfig& config)
     : config_(config),
       gain_(static_cast<float>(std::pow(10.0, config.gain_db / 20.0))),
+      input_channels_(input_channels),
       ring_(config.ring_frames, std::max(1, input_channels)) {
-  core::requireFinite("gain", config.gain_db);
-  if (config.max_callback_frames < 1 || config.ring_frames < 1)
-    throw core::InputError("playback", "the ring and the callback scratch need at least one frame");
+  requireConfig(config);
   conv_.init(config.block_frames, ir, input_channels);
   dry_.assign(static_cast<size_t>(config.max_callback_frames) * static_cast<size_t>(input_channels), 0.0f);
-  tail_left_ = conv_.irLength() - 1;
+  ir_frames_ = conv_.irLength();
+  tail_left_ = ir_frames_ - 1;
+}
+
+PlaybackRenderer::PlaybackRenderer(const std::vector<std::vector<std::vector<float>>>& irs,
+                                   const std::vector<long>& key_frames, int input_channels,
+                                   const PlaybackConfig& config)
+    : config_(config),
+      gain_(static_cast<float>(std::pow(10.0, config.gain_db / 20.0))),
+      input_channels_(input_channels),
+      fade_(std::make_unique<dsp::NonUniformCrossfadeConvolver>()),
+      ring_(config.ring_frames, std::max(1, input_channels)) {
+  requireConfig(config);
+  if (input_channels < 1) throw core::InputError("playback", "the dry input needs at least one channel");
+  fade_->init(config.block_frames, irs, 1, key_frames);
+  dry_.assign(static_cast<size_t>(config.max_callback_frames) * static_cast<size_t>(input_channels), 0.0f);
+  mono_.assign(static_cast<size_t>(config.max_callback_frames), 0.0f);
+  for (const auto& ir : irs) ir_frames_ = std::max(ir_frames_, static_cast<long>(ir.front().size()));
+  tail_left_ = ir_frames_ - 1;  // at least the crossfade's own tailFrames() wherever the input ends
 }
 
 bool PlaybackRenderer::render(float* out, long frames) {
@@ -46,7 +73,16 @@ bool PlaybackRenderer::render(float* out, long frames) {
       }
     }
     float* o = out + done * cout;
-    conv_.process(dry_.data(), o, n);
+    if (fade_) {
+      for (long f = 0; f < n; ++f) {
+        float sum = 0.0f;
+        for (long c = 0; c < cin; ++c) sum += dry_[static_cast<size_t>(f * cin + c)];
+        mono_[static_cast<size_t>(f)] = sum / static_cast<float>(cin);
+      }
+      fade_->process(mono_.data(), o, n);
+    } else {
+      conv_.process(dry_.data(), o, n);
+    }
     for (long i = 0; i < n * cout; ++i) o[i] *= gain_;
     done += n;
   }

@@ -24,8 +24,9 @@ long ceilToGrid(long n, long block) { return -floorToGrid(-n, block); }
 
 }  // namespace
 
-void CrossfadeConvolver::init(int block_size, const std::vector<std::vector<std::vector<float>>>& irs,
-                              int input_channels, const std::vector<long>& key_frames) {
+template <class Multichannel>
+void BasicCrossfadeConvolver<Multichannel>::init(int block_size, const std::vector<std::vector<std::vector<float>>>& irs,
+                                                int input_channels, const std::vector<long>& key_frames) {
   const std::string where = "crossfade convolver";
   if (irs.empty()) throw core::InputError(where, "needs at least one impulse response");
   if (key_frames.size() != irs.size())
@@ -43,8 +44,8 @@ void CrossfadeConvolver::init(int block_size, const std::vector<std::vector<std:
                                         std::to_string(irs.front().size()));
   }
   const int K = static_cast<int>(irs.size());
-  // One MultichannelConvolver per IR; it checks the block size, the channel pairing and the samples.
-  std::vector<MultichannelConvolver> convolvers(irs.size());
+  // One multichannel convolver per IR; it checks the block size, the channel pairing and the samples.
+  std::vector<Multichannel> convolvers(irs.size());
   for (int k = 0; k < K; ++k) convolvers[static_cast<size_t>(k)].init(block_size, irs[static_cast<size_t>(k)], input_channels);
   convolvers_ = std::move(convolvers);
   block_ = block_size;
@@ -67,7 +68,8 @@ void CrossfadeConvolver::init(int block_size, const std::vector<std::vector<std:
   position_ = 0;
 }
 
-double CrossfadeConvolver::gain(int k, long n) const {
+template <class Multichannel>
+double BasicCrossfadeConvolver<Multichannel>::gain(int k, long n) const {
   const int K = irCount();
   const auto i = static_cast<size_t>(k);
   if (n <= key_frames_[i]) {
@@ -80,7 +82,8 @@ double CrossfadeConvolver::gain(int k, long n) const {
   return n >= next ? 0.0 : static_cast<double>(next - n) / static_cast<double>(next - key_frames_[i]);
 }
 
-void CrossfadeConvolver::process(const float* in, float* out, long frames) {
+template <class Multichannel>
+void BasicCrossfadeConvolver<Multichannel>::process(const float* in, float* out, long frames) {
   const auto cin = static_cast<long>(input_channels_), cout = static_cast<long>(output_channels_);
   for (long done = 0; done < frames;) {
     // Chunks never cross the block grid, so each lies wholly inside or outside every convolver's span.
@@ -91,7 +94,8 @@ void CrossfadeConvolver::process(const float* in, float* out, long frames) {
   }
 }
 
-void CrossfadeConvolver::flush(float* out, long frames) {
+template <class Multichannel>
+void BasicCrossfadeConvolver<Multichannel>::flush(float* out, long frames) {
   const auto cout = static_cast<long>(output_channels_);
   for (long done = 0; done < frames;) {
     const long to_grid = block_ - (position_ - floorToGrid(position_, block_));
@@ -101,7 +105,8 @@ void CrossfadeConvolver::flush(float* out, long frames) {
   }
 }
 
-void CrossfadeConvolver::processChunk(const float* in, float* out, long n) {
+template <class Multichannel>
+void BasicCrossfadeConvolver<Multichannel>::processChunk(const float* in, float* out, long n) {
   const long cout = output_channels_;
   std::fill(out, out + n * cout, 0.0f);
   for (size_t k = 0; k < convolvers_.size(); ++k) {
@@ -116,7 +121,8 @@ void CrossfadeConvolver::processChunk(const float* in, float* out, long n) {
   position_ += n;
 }
 
-long CrossfadeConvolver::tailFrames() const {
+template <class Multichannel>
+long BasicCrossfadeConvolver<Multichannel>::tailFrames() const {
   long tail = 0;
   const int K = irCount();
   for (int k = 0; k < K; ++k) {
@@ -130,15 +136,20 @@ long CrossfadeConvolver::tailFrames() const {
   return tail;
 }
 
-void CrossfadeConvolver::reset() {
+template <class Multichannel>
+void BasicCrossfadeConvolver<Multichannel>::reset() {
   for (auto& c : convolvers_) c.reset();
   position_ = 0;
 }
 
-int CrossfadeConvolver::activeConvolvers() const {
+template <class Multichannel>
+int BasicCrossfadeConvolver<Multichannel>::activeConvolvers() const {
   int active = 0;
   for (size_t k = 0; k < convolvers_.size(); ++k) active += position_ >= start_[k] && position_ < stop_[k];
   return active;
 }
+
+template class BasicCrossfadeConvolver<MultichannelConvolver>;
+template class BasicCrossfadeConvolver<NonUniformMultichannelConvolver>;
 
 }  // namespace diffray::dsp

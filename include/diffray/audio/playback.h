@@ -6,7 +6,9 @@
 // it feeds zeros until the IR's tail has rung out (IR frames − 1), then reports itself finished and writes
 // silence. If the ring runs dry before the input has ended (an underrun: the reader fell behind), the
 // missing dry frames are taken as silence (the reverberant tail keeps going) and the underrun is counted;
-// the callback never waits.
+// the callback never waits. The closing door (`diffray door --play`) is the same with IRs crossfaded over
+// time (dsp::NonUniformCrossfadeConvolver, each IR's convolver on the non-uniform engine), the dry input
+// mixed to one channel first, as `door` mixes it offline.
 // Threads: pushDry()/endInput() from one producer thread (DryFileStreamer); render() from one consumer
 // thread (the audio callback); the counters and finished() from anywhere. render() allocates nothing,
 // locks nothing and does no I/O (std::atomic loads/stores only; the convolver's process()).
@@ -16,11 +18,13 @@
 // Pa_OpenStream and the test backend (audio/test_backend.h) calls it from an ordinary thread.
 #include <atomic>
 #include <exception>
+#include <memory>
 #include <thread>
 #include <vector>
 
 #include "diffray/audio/spsc_ring.h"
 #include "diffray/audio/wav.h"
+#include "diffray/dsp/crossfade_convolver.h"
 #include "diffray/dsp/multichannel_convolver.h"
 
 struct PaStreamCallbackTimeInfo;  // portaudio.h; the callback below never reads it
@@ -39,12 +43,20 @@ class PlaybackRenderer {
   /// `ir[m]` is IR channel m (channel pairing as in dsp/multichannel_convolver.h). Throws core::InputError
   /// for a bad pairing, IR or block size. Allocates everything render() will use.
   PlaybackRenderer(const std::vector<std::vector<float>>& ir, int input_channels, const PlaybackConfig& config);
+  /// The crossfading renderer: `irs[k][m]` is channel m of IR k, heard alone at input frame key_frames[k]
+  /// (counted from the first dry frame; dsp/crossfade_convolver.h); the `input_channels` dry channels are
+  /// averaged into one before the convolution. Throws core::InputError as CrossfadeConvolver::init does.
+  PlaybackRenderer(const std::vector<std::vector<std::vector<float>>>& irs, const std::vector<long>& key_frames,
+                   int input_channels, const PlaybackConfig& config);
 
-  int inputChannels() const { return conv_.inputChannels(); }
-  int outputChannels() const { return conv_.outputChannels(); }
+  int inputChannels() const { return input_channels_; }
+  int outputChannels() const { return fade_ ? fade_->outputChannels() : conv_.outputChannels(); }
   int blockFrames() const { return config_.block_frames; }
-  long irFrames() const { return conv_.irLength(); }
-  /// Tail stages' block sizes after the head (for reporting); see dsp/non_uniform_convolver.h.
+  /// The IR's frames (the crossfading renderer: the longest IR's).
+  long irFrames() const { return ir_frames_; }
+  bool crossfading() const { return fade_ != nullptr; }
+  /// Tail stages' block sizes after the head (for reporting); see dsp/non_uniform_convolver.h. Not
+  /// initialised in the crossfading renderer.
   const dsp::NonUniformMultichannelConvolver& convolver() const { return conv_; }
 
   // Producer side (one thread).
@@ -70,9 +82,13 @@ class PlaybackRenderer {
  private:
   PlaybackConfig config_;
   float gain_ = 1.0f;
+  int input_channels_ = 1;
+  long ir_frames_ = 0;
   dsp::NonUniformMultichannelConvolver conv_;
+  std::unique_ptr<dsp::NonUniformCrossfadeConvolver> fade_;  ///< the crossfading renderer's, else null
   SpscFrameRing ring_;
-  std::vector<float> dry_;  ///< max_callback_frames × input channels
+  std::vector<float> dry_;   ///< max_callback_frames × input channels
+  std::vector<float> mono_;  ///< the crossfading renderer: max_callback_frames, the dry channels' mean
   long tail_left_ = 0;      ///< zero frames still to feed after the input ended (callback thread only)
   std::atomic<bool> input_ended_{false};
   std::atomic<bool> finished_{false};

@@ -17,6 +17,9 @@
 //    zero latency, allocation-free); when the input is over, flush() feeds silence for tailFrames() frames to
 //    get the rest of the output. A call with a multiple of blockSize() frames costs the least.
 //  * Memory: K MultichannelConvolvers are built in init() (about 32·L_k bytes per IR channel each).
+//  * Engines: CrossfadeConvolver runs uniformly partitioned convolvers (the offline door); the
+//    NonUniformCrossfadeConvolver runs dsp::NonUniformMultichannelConvolver (non_uniform_convolver.h), whose
+//    cost per block grows with the log of the IR's length: the real-time door (audio/playback.h).
 // Thread-safety: one object is used by one thread at a time.
 #include <vector>
 
@@ -24,7 +27,8 @@
 
 namespace diffray::dsp {
 
-class CrossfadeConvolver {
+template <class Multichannel>
+class BasicCrossfadeConvolver {
  public:
   /// `irs[k][m]`: channel m of IR k (K = irs.size() ≥ 1, every IR with the same channel count ≥ 1, each
   /// channel ≥ 1 finite sample); `key_frames[k]`: where IR k is heard alone (strictly increasing, K
@@ -70,7 +74,7 @@ class CrossfadeConvolver {
   int block_ = 0;
   int input_channels_ = 0;
   int output_channels_ = 0;
-  std::vector<MultichannelConvolver> convolvers_;  ///< one per IR
+  std::vector<Multichannel> convolvers_;  ///< one per IR
   std::vector<long> key_frames_;
   std::vector<long> ir_lengths_;   ///< L_k
   std::vector<long> start_;        ///< first frame convolver k is fed (on the block grid)
@@ -79,5 +83,10 @@ class CrossfadeConvolver {
   std::vector<float> silence_;     ///< one block of input zeros, for flush()
   long position_ = 0;
 };
+
+using CrossfadeConvolver = BasicCrossfadeConvolver<MultichannelConvolver>;
+using NonUniformCrossfadeConvolver = BasicCrossfadeConvolver<NonUniformMultichannelConvolver>;
+extern template class BasicCrossfadeConvolver<MultichannelConvolver>;
+extern template class BasicCrossfadeConvolver<NonUniformMultichannelConvolver>;
 
 }  // namespace diffray::dsp
