@@ -154,6 +154,17 @@ expect_door_error "NaN in the dry signal"  "$two" --in "$tmp/nan.wav" -o "$tmp/d
 expect_door_error "output not a .wav"      "$two" --in "$tmp/burst.wav" -o "$tmp/door.mp3" --close 0.1:0.2
 expect_door_error "output folder missing"  "$two" --in "$tmp/burst.wav" -o "$tmp/no/such/door.wav" --close 0.1:0.2
 expect_door_error "unknown diffraction"    "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --diffraction magic
+# --play: -o, --play or both; --device and --block only with --play; a bad --block and (with no audio
+# device, CI) the device itself refused before the tracing, nothing written.
+expect_door_error "neither -o nor --play"   "$two" --in "$tmp/burst.wav" --close 0.1:0.2
+expect_door_error "--spectrogram without -o" "$two" --in "$tmp/burst.wav" --close 0.1:0.2 --play --spectrogram "$tmp/door.png"
+expect_door_error "--device without --play" "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --device 0
+expect_door_error "--block without --play"  "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --block 256
+expect_door_error "--play, tiny --block"    "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --play --block 1
+expect_door_error "--play, no such device"  "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --play --device no-such-card-xyz
+if "$bin" auralize --list-devices 2>/dev/null | grep -q "no audio output devices"; then
+  expect_door_error "--play without an audio device" "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.1:0.2 --play
+fi
 # The good path: two steps at few rays write the WAV (one channel per listener), the PNG, the JSON and the CSV.
 if "$bin" door "$two" --in "$tmp/burst.wav" -o "$tmp/door.wav" --close 0.05:0.2 --steps 2 --rays 3000 >/dev/null 2>"$tmp/stderr" &&
    [ "$(head -c 8 "$tmp/door.png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&

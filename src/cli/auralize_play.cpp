@@ -1,5 +1,5 @@
-// `diffray auralize --ir IR.wav --in DRY.wav --play [--device N|NAME] [--block FRAMES] [--gain DB]` and
-// `diffray auralize --list-devices`: see include/diffray/cli/play.h. The dry file is streamed by a reader
+// `diffray auralize --ir IR.wav --in DRY.wav --play [--device N|NAME] [--block FRAMES] [--gain DB]`,
+// `diffray door … --play` and `diffray auralize --list-devices`: see include/diffray/cli/play.h. The dry file is streamed by a reader
 // thread (audio::DryFileStreamer) into a lock-free ring that the PortAudio callback drains through the
 // non-uniform convolver (audio::PlaybackRenderer); the ring is half filled before the stream starts. The
 // latency added by the convolution is zero; the device's buffer adds one block (block / rate seconds) plus
@@ -10,6 +10,8 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "diffray/audio/playback.h"
 #include "diffray/audio/portaudio_output.h"
@@ -63,6 +65,38 @@ void requireBlockFrames(int block_frames) {
                                           std::to_string(kMaxBlockFrames) + " frames, got " + std::to_string(block_frames));
 }
 
+namespace {
+
+/// Plays `renderer` fed from `dry` on the chosen device until it ends or Ctrl-C; `what` names it in the
+/// first line. Returns the exit code (0, or 130 after Ctrl-C).
+int playRenderer(audio::PlaybackRenderer& renderer, audio::AudioReader& dry, audio::PortAudioHost& host,
+                 const audio::OutputDevice& device, int block_frames, const std::string& what) {
+  const double rate = dry.sampleRateHz();
+  std::cout << "playing " << what << " on " << device.name << ": " << renderer.outputChannels()
+            << " channel(s) at " << rate << " Hz, block " << block_frames << " frames = "
+            << 1e3 * block_frames / rate << " ms, " << renderer.irFrames() << " IR frames; Ctrl-C stops" << std::endl;
+  InterruptGuard guard;
+  audio::DryFileStreamer streamer(dry, renderer);
+  streamer.waitForPrefill(renderer.ringFrames() / 2);
+  const audio::PlaybackReport report = host.play(renderer, device, rate, g_interrupted);
+  streamer.stop();
+  streamer.wait();
+  std::cout << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()
+            << " frames, device output latency " << 1e3 * report.output_latency_s << " ms, underruns "
+            << renderer.underruns() << " (" << renderer.underrunFrames() << " dry frames missed)\n";
+  return report.interrupted ? 130 : 0;
+}
+
+audio::PlaybackConfig playbackConfig(int block_frames, double gain_db) {
+  audio::PlaybackConfig config;
+  config.block_frames = block_frames;
+  config.gain_db = gain_db;
+  config.ring_frames = std::max<long>(1L << 16, 8L * block_frames);
+  return config;
+}
+
+}  // namespace
+
 int playAuralization(const PlayOptions& o) {
   core::requireFinite("--gain", o.gain_db);
   requireBlockFrames(o.block_frames);
@@ -75,27 +109,20 @@ int playAuralization(const PlayOptions& o) {
       decodedIr(irAtRate(ir, dry.sampleRateHz(), o.ir, o.no_resample), o, dry.sampleRateHz());
   audio::PortAudioHost host;
   const audio::OutputDevice device = host.chooseOutputDevice(o.device);
+  audio::PlaybackRenderer renderer(ir_channels, dry.channels(), playbackConfig(o.block_frames, o.gain_db));
+  return playRenderer(renderer, dry, host, device, o.block_frames, o.in + " * " + o.ir);
+}
 
-  audio::PlaybackConfig config;
-  config.block_frames = o.block_frames;
-  config.gain_db = o.gain_db;
-  config.ring_frames = std::max<long>(1L << 16, 8L * o.block_frames);
-  audio::PlaybackRenderer renderer(ir_channels, dry.channels(), config);
-  const double rate = dry.sampleRateHz();
-  std::cout << "playing " << o.in << " * " << o.ir << " on " << device.name << ": " << renderer.outputChannels()
-            << " channel(s) at " << rate << " Hz, block " << o.block_frames << " frames = "
-            << 1e3 * o.block_frames / rate << " ms, " << renderer.convolver().irLength() << " IR frames; Ctrl-C stops"
-            << std::endl;
-  InterruptGuard guard;
-  audio::DryFileStreamer streamer(dry, renderer);
-  streamer.waitForPrefill(renderer.ringFrames() / 2);
-  const audio::PlaybackReport report = host.play(renderer, device, rate, g_interrupted);
-  streamer.stop();
-  streamer.wait();
-  std::cout << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()
-            << " frames, device output latency " << 1e3 * report.output_latency_s << " ms, underruns "
-            << renderer.underruns() << " (" << renderer.underrunFrames() << " dry frames missed)\n";
-  return report.interrupted ? 130 : 0;
+int playCrossfade(const std::vector<std::vector<std::vector<float>>>& irs, const std::vector<long>& key_frames,
+                  const std::string& in, const std::string& device_name, int block_frames, double gain_db) {
+  core::requireFinite("--gain", gain_db);
+  requireBlockFrames(block_frames);
+  audio::AudioReader dry(in);
+  audio::PortAudioHost host;
+  const audio::OutputDevice device = host.chooseOutputDevice(device_name);
+  audio::PlaybackRenderer renderer(irs, key_frames, dry.channels(), playbackConfig(block_frames, gain_db));
+  return playRenderer(renderer, dry, host, device, block_frames,
+                      in + " through the closing door (" + std::to_string(irs.size()) + " crossfaded IRs)");
 }
 
 }  // namespace diffray::cli

@@ -1,4 +1,5 @@
-// `diffray door ROOM.json --in DRY.wav -o OUT.wav --close START:END [--steps K] [--diffraction wbsdf|utd|none]`:
+// `diffray door ROOM.json --in DRY.wav -o OUT.wav --close START:END [--steps K] [--diffraction wbsdf|utd|none]
+// [--play]`:
 // the sound of a door closing. A sliding panel narrows the room's door from open (START)
 // to shut (END); the room is traced at K gaps (door/closing.h), each response is synthesized at the dry
 // signal's sample rate (or at the room's and resampled, when the room's bands reach past the dry signal's
@@ -10,7 +11,8 @@
 // binaural two per listener (left, right: ir::synthesizeBinaural, coherent phasing). Beside it: OUT.png, the
 // spectrogram of the first channel with START and END marked; OUT.json, the sidecar (the schedule, each step's
 // band levels re the open door per listener, the panel's transmission loss); OUT.csv, the same levels as a
-// table. Every output is written whole or not at all. Memory: the K IRs, and one channel of the output for
+// table. Every output is written whole or not at all. --play plays the same in real time (cli/play.h), after
+// the files when -o is given too. Memory: the K IRs, and one channel of the output for
 // the spectrogram (4 bytes per frame); the dry signal itself streams.
 #include <algorithm>
 #include <chrono>
@@ -25,6 +27,7 @@
 
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
+#include "diffray/cli/play.h"
 #include "diffray/cli/plot.h"
 #include "diffray/cli/spectrogram_plot.h"
 #include "diffray/core/atomic_file.h"
@@ -54,6 +57,9 @@ struct DoorOptions {
   std::uint64_t rays = 0;
   double gain_db = 0.0;
   std::string format = "omni", hrtf;
+  bool play = false;         ///< --play: real time on an audio device (with or without -o)
+  std::string device;        ///< --device
+  int block_frames = 256;    ///< --block
 };
 
 constexpr int kBlock = 2048;          ///< convolution block (frames)
@@ -143,9 +149,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--in", opts->in, "dry signal (WAV, FLAC, ...; its sample rate is the output's)")
       ->check(inputPathValidator())
       ->required();
-  sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener)")
-      ->check(outputPathValidator())
-      ->required();
+  sub->add_option("-o,--output", opts->out, "output WAV (one channel per listener; or --play, or both)")
+      ->check(outputPathValidator());
   sub->add_option("--close", opts->close, "START:END in seconds: the panel leaves the door open at START, shut at END")
       ->required();
   sub->add_option("--steps", opts->steps, "openings traced: gaps W, W/2, W/4, ... and shut")
@@ -167,9 +172,22 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
   sub->add_option("--spectrogram", opts->spectrogram, "spectrogram PNG of the first channel (default: OUT.png)")
       ->check(outputPathValidator());
   sub->add_flag("--json", common.json, "print the JSON sidecar to stdout instead of the table");
+  sub->add_flag("--play", opts->play,
+                "play the closing door in real time on an audio device (PortAudio; the crossfades run in the audio "
+                "callback), after writing -o if given");
+  sub->add_option("--device", opts->device, "with --play: output device, by index or name substring (default: the "
+                                            "default device; `diffray auralize --list-devices` lists them)");
+  CLI::Option* block = sub->add_option("--block", opts->block_frames,
+                                       "with --play: audio block in frames, 16 - 16384 (the latency: block / rate)")
+                           ->capture_default_str();
 
-  return [opts, &common, seed_option]() {
+  return [opts, &common, seed_option, block]() {
     const auto t_start = std::chrono::steady_clock::now();
+    if (opts->out.empty() && !opts->play) throw core::InputError("door", "give -o OUT.wav, --play, or both");
+    if (opts->out.empty() && !opts->spectrogram.empty())
+      throw core::InputError("--spectrogram", "is written beside -o OUT.wav; give -o as well");
+    if (!opts->play && !opts->device.empty()) throw core::InputError("--device", "only applies with --play");
+    if (!opts->play && block->count() > 0) throw core::InputError("--block", "only applies with --play");
     core::ThreadLimit limit(common.threads);
     double start_s = 0.0, end_s = 0.0;
     parseClose(opts->close, start_s, end_s);
@@ -184,7 +202,11 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       if (opts->listener.empty() || room.listeners[l].name == opts->listener) chosen.push_back(l);
     if (chosen.empty()) throw core::InputError("--listener", "the room has no listener named \"" + opts->listener + "\"");
     const std::string png = opts->spectrogram.empty() ? withExtension(opts->out, ".png") : opts->spectrogram;
-    checkOutputs(*opts, png, room.input_files);
+    if (!opts->out.empty()) checkOutputs(*opts, png, room.input_files);
+    if (opts->play) {  // the device and the block before the (long) tracing
+      requireBlockFrames(opts->block_frames);
+      requireOutputDevice(opts->device);
+    }
     {  // One pass through the dry signal before the (long) tracing: a NaN in it is an error now, not later.
       audio::AudioReader scan(opts->in);
       std::vector<float> buffer(static_cast<std::size_t>(kBlock) * scan.channels());
@@ -288,20 +310,22 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
                 << "signal's Nyquist frequency) and resampled them to its " << fs << " Hz (libsamplerate)\n";
     // Render, then the spectrogram and the sidecars (each atomic; the WAV first, the largest).
     OutputFiles written;  // replaced together: a later failure leaves the previous files
-    std::vector<float> first;
-    double peak = 0.0;
-    written.write(opts->out, [&](const std::string& f) {
-      first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f, peak);
-    });
-    warnIfClips(opts->out, peak, "lower --gain");
-    const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
-                                                   kSpectrogramWindow, kSpectrogramHop);
-    SpectrogramPlotOptions po;
-    po.title = room.name + ": door " + d.name + " closing (" + opts->diffraction + "), listener " +
-               room.listeners[chosen[0]].name;
-    po.markers = {{start_s, "open"}, {end_s, "shut"}};
-    po.option = "--spectrogram";
-    written.write(png, [&](const std::string& f) { writeSpectrogramPlot(f, spec, po); });
+    if (!opts->out.empty()) {
+      std::vector<float> first;
+      double peak = 0.0;
+      written.write(opts->out, [&](const std::string& f) {
+        first = render(reader, irs, keys, std::pow(10.0, opts->gain_db / 20.0), f, peak);
+      });
+      warnIfClips(opts->out, peak, "lower --gain");
+      const dsp::Spectrogram spec = dsp::spectrogram(first.data(), static_cast<long>(first.size()), fs,
+                                                     kSpectrogramWindow, kSpectrogramHop);
+      SpectrogramPlotOptions po;
+      po.title = room.name + ": door " + d.name + " closing (" + opts->diffraction + "), listener " +
+                 room.listeners[chosen[0]].name;
+      po.markers = {{start_s, "open"}, {end_s, "shut"}};
+      po.option = "--spectrogram";
+      written.write(png, [&](const std::string& f) { writeSpectrogramPlot(f, spec, po); });
+    }
 
     nlohmann::ordered_json bands = nlohmann::ordered_json::array(), tl = nlohmann::ordered_json::array();
     for (int b = 0; b < room.bands.size(); ++b) {
@@ -319,8 +343,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
         {"door", d.name},
         {"door_width_m", cr.width_m},
         {"dry", opts->in},
-        {"wav", opts->out},
-        {"spectrogram", png},
+        {"wav", opts->out.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(opts->out)},
+        {"spectrogram", opts->out.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(png)},
         {"sample_rate_hz", fs},
         {"close_s", {start_s, end_s}},
         {"diffraction", opts->diffraction},
@@ -333,21 +357,27 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
         {"threads", core::ThreadLimit::current()},
         {"steps", steps},
         {"warnings", all_warnings}};
-    written.write(withExtension(opts->out, ".csv"), [&](const std::string& f) {
-      core::writeFileAtomically(f, [&](std::ostream& out) { out << csv.str(); });
-    });
     side["timing_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
-      core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
-    });
-    commitAndAnnounce(written);
+    if (!opts->out.empty()) {
+      written.write(withExtension(opts->out, ".csv"), [&](const std::string& f) {
+        core::writeFileAtomically(f, [&](std::ostream& out) { out << csv.str(); });
+      });
+      written.write(withExtension(opts->out, ".json"), [&](const std::string& f) {
+        core::writeFileAtomically(f, [&](std::ostream& out) { out << jsonText(side, 2) << '\n'; });
+      });
+      commitAndAnnounce(written);
+    }
+    const auto play = [&]() {
+      return opts->play ? playCrossfade(irs, keys, opts->in, opts->device, opts->block_frames, opts->gain_db) : 0;
+    };
     if (common.json) {
       std::cout << jsonText(side, 2) << std::endl;
-      return 0;
+      return play();
     }
-    std::printf("%s: door %s closes %.2f-%.2f s in %zu steps (%s), %llu rays per step -> %s (+ .png, .json, .csv)\n",
-                room.name.c_str(), d.name.c_str(), start_s, end_s, schedule.size(), opts->diffraction.c_str(),
-                static_cast<unsigned long long>(rays), opts->out.c_str());
+    std::printf("%s: door %s closes %.2f-%.2f s in %zu steps (%s), %llu rays per step -> %s\n", room.name.c_str(),
+                d.name.c_str(), start_s, end_s, schedule.size(), opts->diffraction.c_str(),
+                static_cast<unsigned long long>(rays),
+                opts->out.empty() ? "played, nothing written" : (opts->out + " (+ .png, .json, .csv)").c_str());
     std::printf("level re the open door (dB), listener %s:\n%8s %8s", room.listeners[chosen[0]].name.c_str(), "time_s",
                 "gap_m");
     for (int b = 0; b < room.bands.size(); ++b) std::printf(" %7s", room.bands.label(b).c_str());
@@ -368,7 +398,8 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
     }
     if (signed_noise)
       std::printf("-: the band's signed energy summed to <= 0 at this gap (WBSDF noise: use more --rays)\n");
-    return 0;
+    std::fflush(stdout);
+    return play();
   };
 }
 
