@@ -10,6 +10,7 @@
 #include "diffray/core/error.h"
 #include "diffray/ir/metrics.h"
 #include "diffray/room/air.h"
+#include "diffray/room/checks.h"
 #include "diffray/transport/image_sources.h"
 #include "diffray/transport/room_geometry.h"
 #include "diffray/transport/room_tracer.h"
@@ -123,7 +124,11 @@ double pilotRays(double bounces_per_ray) { return std::clamp(1e8 / bounces_per_r
 double bouncesPerRay(const room::Room& room, double length_s, double c) {
   const double volume = room.volume(), area = room.surfaceArea();
   if (!(volume > 0.0) || !(area > 0.0)) return length_s * c;  // no enclosure: a 1 m free path as the bound
-  const double by_length = length_s * c / (4.0 * volume / area);
+  // An enclosure that holds no source (a closed object in the open, such as a cupboard): its volume says
+  // nothing about the rays' paths, which leave into free space; the 1 m free path again.
+  const bool enclosed = std::any_of(room.sources.begin(), room.sources.end(),
+                                    [&](const room::Source& s) { return room::insideRoom(room, s.position_m); });
+  const double by_length = length_s * c / (enclosed ? 4.0 * volume / area : 1.0);
   const SurfaceSums sums = surfaceSums(room);
   double least = 1.0;  // the smallest mean fraction that leaves the room for good at a hit: α − τ
   for (int b = 0; b < room.bands.size(); ++b) least = std::min(least, (sums.absorbed[b] - sums.transmitted[b]) / area);
