@@ -1,10 +1,11 @@
 // `diffray auralize --ir IR.wav --in DRY.wav --play [--device N|NAME] [--block FRAMES] [--gain DB]`,
-// `diffray door … --play` and `diffray auralize --list-devices`: see include/diffray/cli/play.h. The dry file is streamed by a reader
-// thread (audio::DryFileStreamer) into a lock-free ring that the PortAudio callback drains through the
-// non-uniform convolver (audio::PlaybackRenderer); the ring is half filled before the stream starts. The
-// latency added by the convolution is zero; the device's buffer adds one block (block / rate seconds) plus
-// whatever the host API adds (printed as PortAudio reports it). Ctrl-C sets an atomic flag that the
-// polling loop sees within 20 ms; the stream is aborted, the reader stopped, and the exit code is 130.
+// `diffray door … --play` and `diffray auralize --list-devices`: see include/diffray/cli/play.h. The dry
+// file is streamed by a reader thread (audio::DryFileStreamer) into a lock-free ring that the PortAudio
+// callback drains through the non-uniform convolver (audio::PlaybackRenderer; for the door, its crossfading
+// form); the ring is half filled before the stream starts. The latency added by the convolution is zero;
+// the device's buffer adds one block (block / rate seconds) plus whatever the host API adds (printed as
+// PortAudio reports it). Ctrl-C sets an atomic flag that the polling loop sees within 20 ms; the stream is
+// aborted, the reader stopped, and the exit code is 130.
 #include <algorithm>
 #include <atomic>
 #include <csignal>
@@ -68,11 +69,11 @@ void requireBlockFrames(int block_frames) {
 namespace {
 
 /// Plays `renderer` fed from `dry` on the chosen device until it ends or Ctrl-C; `what` names it in the
-/// first line. Returns the exit code (0, or 130 after Ctrl-C).
+/// first line of `status`. Returns the exit code (0, or 130 after Ctrl-C).
 int playRenderer(audio::PlaybackRenderer& renderer, audio::AudioReader& dry, audio::PortAudioHost& host,
-                 const audio::OutputDevice& device, int block_frames, const std::string& what) {
+                 const audio::OutputDevice& device, int block_frames, const std::string& what, std::ostream& status) {
   const double rate = dry.sampleRateHz();
-  std::cout << "playing " << what << " on " << device.name << ": " << renderer.outputChannels()
+  status << "playing " << what << " on " << device.name << ": " << renderer.outputChannels()
             << " channel(s) at " << rate << " Hz, block " << block_frames << " frames = "
             << 1e3 * block_frames / rate << " ms, " << renderer.irFrames() << " IR frames; Ctrl-C stops" << std::endl;
   InterruptGuard guard;
@@ -81,7 +82,7 @@ int playRenderer(audio::PlaybackRenderer& renderer, audio::AudioReader& dry, aud
   const audio::PlaybackReport report = host.play(renderer, device, rate, g_interrupted);
   streamer.stop();
   streamer.wait();
-  std::cout << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()
+  status << (report.interrupted ? "interrupted" : "done") << ": " << renderer.framesRendered()
             << " frames, device output latency " << 1e3 * report.output_latency_s << " ms, underruns "
             << renderer.underruns() << " (" << renderer.underrunFrames() << " dry frames missed)\n";
   return report.interrupted ? 130 : 0;
@@ -110,11 +111,12 @@ int playAuralization(const PlayOptions& o) {
   audio::PortAudioHost host;
   const audio::OutputDevice device = host.chooseOutputDevice(o.device);
   audio::PlaybackRenderer renderer(ir_channels, dry.channels(), playbackConfig(o.block_frames, o.gain_db));
-  return playRenderer(renderer, dry, host, device, o.block_frames, o.in + " * " + o.ir);
+  return playRenderer(renderer, dry, host, device, o.block_frames, o.in + " * " + o.ir, std::cout);
 }
 
 int playCrossfade(const std::vector<std::vector<std::vector<float>>>& irs, const std::vector<long>& key_frames,
-                  const std::string& in, const std::string& device_name, int block_frames, double gain_db) {
+                  const std::string& in, const std::string& device_name, int block_frames, double gain_db,
+                  std::ostream& status) {
   core::requireFinite("--gain", gain_db);
   requireBlockFrames(block_frames);
   audio::AudioReader dry(in);
@@ -122,7 +124,7 @@ int playCrossfade(const std::vector<std::vector<std::vector<float>>>& irs, const
   const audio::OutputDevice device = host.chooseOutputDevice(device_name);
   audio::PlaybackRenderer renderer(irs, key_frames, dry.channels(), playbackConfig(block_frames, gain_db));
   return playRenderer(renderer, dry, host, device, block_frames,
-                      in + " through the closing door (" + std::to_string(irs.size()) + " crossfaded IRs)");
+                      in + " through the closing door (" + std::to_string(irs.size()) + " crossfaded IRs)", status);
 }
 
 }  // namespace diffray::cli

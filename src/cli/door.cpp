@@ -12,8 +12,8 @@
 // spectrogram of the first channel with START and END marked; OUT.json, the sidecar (the schedule, each step's
 // band levels re the open door per listener, the panel's transmission loss); OUT.csv, the same levels as a
 // table. Every output is written whole or not at all. --play plays the same in real time (cli/play.h), after
-// the files when -o is given too. Memory: the K IRs, and one channel of the output for
-// the spectrogram (4 bytes per frame); the dry signal itself streams.
+// the files when -o is given too. Memory: the K IRs, and one channel of the output for the spectrogram (4
+// bytes per frame); the dry signal itself streams.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -368,7 +368,9 @@ Runner addDoorCommand(CLI::App& app, CommonOptions& common) {
       commitAndAnnounce(written);
     }
     const auto play = [&]() {
-      return opts->play ? playCrossfade(irs, keys, opts->in, opts->device, opts->block_frames, opts->gain_db) : 0;
+      return opts->play ? playCrossfade(irs, keys, opts->in, opts->device, opts->block_frames, opts->gain_db,
+                                        common.json ? std::cerr : std::cout)
+                        : 0;
     };
     if (common.json) {
       std::cout << jsonText(side, 2) << std::endl;

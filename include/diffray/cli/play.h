@@ -1,9 +1,10 @@
 #pragma once
 // `diffray auralize --play`, `diffray door --play` and `--list-devices` (src/cli/auralize_play.cpp): real-time
 // playback of a dry file convolved with an impulse response (or, for the door, with several crossfaded over
-// time) through PortAudio (audio/portaudio_output.h). With no audio
-// output device (CI, a headless server) both end with one line: --play exits 2 ("no audio output
-// device …; write a file with -o instead"), --list-devices says none were found and exits 0.
+// time) through PortAudio (audio/portaudio_output.h). With no audio output device (CI, a headless server)
+// both end with one line: --play exits 2 ("no audio output device …; write a file with -o instead"),
+// --list-devices says none were found and exits 0.
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -50,9 +51,11 @@ void requireOutputDevice(const std::string& device);
 int playAuralization(const PlayOptions& options);
 /// `door --play`: plays the dry file `in` (its channels averaged) through `irs` crossfaded at `key_frames`
 /// (audio::PlaybackRenderer's crossfading form; the IRs at the dry file's rate) on `device` (as for
-/// --device), in blocks of `block_frames`, with `gain_db`. Returns the exit code (0, or 130 after Ctrl-C);
-/// throws core::InputError for bad options or no device.
+/// --device), in blocks of `block_frames`, with `gain_db`; its status lines on `status` (stderr when stdout
+/// holds JSON). Returns the exit code (0, or 130 after Ctrl-C); throws core::InputError for bad options or
+/// no device.
 int playCrossfade(const std::vector<std::vector<std::vector<float>>>& irs, const std::vector<long>& key_frames,
-                  const std::string& in, const std::string& device, int block_frames, double gain_db);
+                  const std::string& in, const std::string& device, int block_frames, double gain_db,
+                  std::ostream& status);
 
 }  // namespace diffray::cli
