@@ -20,7 +20,7 @@
 namespace diffray::compare {
 
 /// The perimeter, in wavelengths, up to which the BTM reference is computed. On rooms/screen.json (limit
-/// 6435 Hz) one point of a listener's ball rule, every band at once, takes about 1.7 s on 2 cores.
+/// 6435 Hz) one point of a listener's ball rule, every band at once, takes about 1.1 s on 2 idle cores.
 inline constexpr double kBtmMaxPerimeterWavelengths = 300.0;
 
 /// The same limit for a box: the total length of its edges (with the ground, of the box joined with its
