@@ -3,6 +3,7 @@
 // J/m², so the direct sound of a 1 W source at 1 m has amplitude 1), OUT.json (the sidecar: metrics per
 // listener from the energy histograms and from the WAV, rays, seed, version, timing, warnings) and OUT.csv
 // (the band × time energy histograms), each atomically. Prints a metrics table (or the sidecar with --json).
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -198,6 +199,12 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     core::ThreadLimit limit(common.threads);
     std::vector<std::string> warnings;
     const room::Room room = room::loadRoom(opts->room_file, &warnings);
+    // A scene in the open (an object on a ground, a barrier): no source inside an enclosure. ir simulates rooms;
+    // say which command suits it, beside the warnings that say what is wrong.
+    if (std::none_of(room.sources.begin(), room.sources.end(),
+                     [&](const room::Source& s) { return room::insideRoom(room, s.position_m); }))
+      warnings.push_back("no source is inside an enclosed room: ir simulates rooms (reverberation, metrics); for a "
+                         "scene in the open, such as an object or a barrier on a ground, use diffray compare");
     if (seed_option->count() == 0) common.seed = room.output.seed;  // the file's seed unless --seed is given
     // The default names carry ".ir" so that they never take the scene's own name (`cd rooms && diffray ir
     // shoebox.json` writes shoebox.ir.wav, .ir.json, .ir.csv beside shoebox.json). With -o OUT.wav the sidecar
