@@ -62,12 +62,15 @@ bool inOccluderPlane(const room::Room& room, const Tri& t, double tol) {
   return false;
 }
 
-// Per triangle of `solid`: whether it bounds a closed object that p lies outside of. Its part (triangles
-// joined across shared edges, vertices matched on a grid of `tol`) is closed when every edge of the part is
-// shared by an even number of its triangles; p is outside when rays from p along three fixed directions
-// cross the part an even number of times (majority). Behind a face of such an object (a cupboard) a
-// listener is reached round it by diffraction, unlike one below the ground.
-std::vector<char> outsideClosedObject(const std::vector<Tri>& solid, const Vec3& p, double tol) {
+// The closed objects among `solid`: per triangle its part (triangles joined across shared edges, vertices
+// matched on a grid of `tol`) and whether that part is closed (every edge of the part shared by an even
+// number of its triangles). It does not depend on the listener: built once per scene.
+struct ClosedParts {
+  std::vector<int> part;     ///< per triangle: its part's representative triangle
+  std::vector<char> closed;  ///< per triangle: whether its part is closed
+};
+
+ClosedParts closedParts(const std::vector<Tri>& solid, double tol) {
   using Key = std::array<long long, 3>;
   const auto key = [&](const Vec3& v) { return Key{std::llround(v.x() / tol), std::llround(v.y() / tol), std::llround(v.z() / tol)}; };
   std::vector<int> parent(solid.size());
@@ -83,29 +86,36 @@ std::vector<char> outsideClosedObject(const std::vector<Tri>& solid, const Vec3&
   }
   for (const auto& [edge, tris] : edges)
     for (int t : tris) parent[static_cast<std::size_t>(find(t))] = find(tris[0]);
-  std::vector<char> closed(solid.size(), 1);
+  std::vector<char> part_closed(solid.size(), 1);
   for (const auto& [edge, tris] : edges) {
     std::map<int, int> count;
     for (int t : tris) ++count[find(t)];
     for (const auto& [part, n] : count)
-      if (n % 2 != 0) closed[static_cast<std::size_t>(part)] = 0;
+      if (n % 2 != 0) part_closed[static_cast<std::size_t>(part)] = 0;
   }
+  ClosedParts out;
+  for (std::size_t t = 0; t < solid.size(); ++t) {
+    out.part.push_back(find(static_cast<int>(t)));
+    out.closed.push_back(part_closed[static_cast<std::size_t>(out.part.back())]);
+  }
+  return out;
+}
+
+// Per triangle of `solid`: whether it bounds a closed object (`parts`) that p lies outside of: rays from p
+// along three fixed directions cross that part an even number of times (majority). Behind a face of such an
+// object (a cupboard) a listener is reached round it by diffraction, unlike one below the ground.
+std::vector<char> outsideClosedObject(const std::vector<Tri>& solid, const ClosedParts& parts, const Vec3& p) {
   static const Vec3 dirs[3] = {Vec3(0.5773, 0.5781, 0.5765).normalized(), Vec3(-0.3111, 0.8123, -0.4932).normalized(),
                                Vec3(0.7071, -0.2017, 0.6777).normalized()};
   std::map<int, int> odd;  // per closed part: how many of the three rays cross it an odd number of times
   for (const Vec3& d : dirs) {
     std::map<int, int> crossings;
     for (std::size_t t = 0; t < solid.size(); ++t)
-      if (closed[static_cast<std::size_t>(find(static_cast<int>(t)))] &&
-          room::crossesTriangle(p, d, solid[t].a, solid[t].b, solid[t].c))
-        ++crossings[find(static_cast<int>(t))];
+      if (parts.closed[t] && room::crossesTriangle(p, d, solid[t].a, solid[t].b, solid[t].c)) ++crossings[parts.part[t]];
     for (const auto& [part, n] : crossings) odd[part] += n % 2;
   }
   std::vector<char> out(solid.size(), 0);
-  for (std::size_t t = 0; t < solid.size(); ++t) {
-    const int part = find(static_cast<int>(t));
-    out[t] = closed[static_cast<std::size_t>(part)] && odd[part] < 2;
-  }
+  for (std::size_t t = 0; t < solid.size(); ++t) out[t] = parts.closed[t] && odd[parts.part[t]] < 2;
   return out;
 }
 
@@ -145,8 +155,9 @@ std::vector<std::string> hiddenListenerWarnings(const room::Room& room) {
   const room::Source& s = room.sources[0];
   const double tol = 1e-9 * sceneScale(room);
   const std::vector<Tri> solid = solidTriangles(room);
+  const ClosedParts parts = closedParts(solid, 1e3 * tol);
   for (const room::Listener& l : room.listeners) {
-    const std::vector<char> outside = outsideClosedObject(solid, l.position_m, 1e3 * tol);
+    const std::vector<char> outside = outsideClosedObject(solid, parts, l.position_m);
     for (std::size_t i = 0; i < solid.size(); ++i) {
       const Tri& t = solid[i];
       if (outside[i] || inOccluderPlane(room, t, tol)) continue;
