@@ -39,7 +39,7 @@ struct Tracer {
   double eps_m = 0.0;
   std::vector<double> air_table;     ///< [bin][band]: e^{−m_b·s_k}, s_k the path length at bin k's centre
   std::vector<double> air_centre_m;  ///< s_k
-  std::vector<int> floor_plane;      ///< per occluder: the mirror plane of a door's floor (sill), or −1
+  std::vector<int> floor_plane;      ///< per occluder: the plane of nextEventViaFloor (a door's sill, the ground under an edge), or −1
   std::vector<char> special;         ///< per triangle: an occluder's, an opening or absorbing (the cold path)
 
   // Scores the segment pos + t·dir, t in [0, t_end), into every listener it crosses.
@@ -128,8 +128,9 @@ struct Tracer {
   // (RoomOccluders::scatter, signed weight), scored by the sphere it crosses (chord over cross-section).
   double sampledSphereScore(core::FastRng& rng, const Path& s, int k, const Vec3& centre, double radius_m) const;
 
-  // Next-event estimation through one specular bounce off a door's floor (the sill's mirror plane): the
-  // listener's image below the floor seen from the hit point, if that line meets the floor on a triangle of
+  // Next-event estimation through one specular bounce off occluder k's floor plane (a door's sill, the
+  // ground under an edge or a barrier: floorPlaneOf in room_tracer.cpp): the listener's image below the
+  // floor seen from the hit point, if that line meets the floor on a triangle of
   // its plane and the reflected leg reaches the listener, times the floor's specular reflectance
   // (1 − α)(1 − s). True when it served the listener (the ray then skips its score after such a bounce).
   bool nextEventViaFloor(RoomTraceResult& acc, core::FastRng& rng, const Path& s, int k, const Vec3& n_in,
