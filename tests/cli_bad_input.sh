@@ -267,14 +267,15 @@ scene["occluders"].append(second)
 json.dump(scene, open(sys.argv[2], "w"))
 PY
 expect_compare_error "--aim with two occluders" "exactly one occluder" "$tmp/two.json" --aim "${fast[@]}"
-# A rigid ground under the barrier: aimed rays would drop the paths that meet the ground first.
+# A reflecting ground that scatters under the barrier: aimed rays would drop its diffuse reflections.
 python3 - "$rooms/barrier.json" "$tmp/rigid_ground.json" <<'PY'
 import json, sys
 scene = json.load(open(sys.argv[1]))
 scene["materials"]["absorbing-ground"]["absorption"] = 0.2
+scene["materials"]["absorbing-ground"]["scattering"] = 0.3
 json.dump(scene, open(sys.argv[2], "w"))
 PY
-expect_compare_error "--aim over a reflecting ground" "surface ground (absorbing-ground) reflects" "$tmp/rigid_ground.json" --aim "${fast[@]}"
+expect_compare_error "--aim over a diffusing ground" "surface ground (absorbing-ground) scatters sound diffusely" "$tmp/rigid_ground.json" --aim "${fast[@]}"
 expect_compare_error "CSV into a missing folder"  "folder does not exist" "$rooms/barrier.json" --rays 1000 --csv "$tmp/no/such/dir/cmp.csv"
 expect_compare_error "plot into a missing folder" "folder does not exist" "$rooms/barrier.json" --rays 1000 --plot "$tmp/no/such/dir/cmp.png"
 expect_compare_error "zero rays"            "--rays" "$rooms/barrier.json" --rays 0 "${fast[@]}"

@@ -2,16 +2,20 @@
 // hand from the shipped scenes' geometry (rooms/barrier.json: a wall in the plane x = 0, base on z = 0 from
 // y = −20 to 20, top edge at z = 3, its diffraction zone 3 m above the edge, source S at (−4, 0, 1) over an
 // absorbing ground z = 0; rooms/doorway.json: a 0.9 × 2.1 m door centred on y = 0 in the wall x = 0, on a
-// rigid floor, source S at (−2.5, 0, 1.5)).
+// rigid floor, source S at (−2.5, 0, 1.5); rooms/screen.json: a 4 × 2 m panel in the plane y = 0, base on
+// the rigid ground z = 0 from x = −2 to 2, its zone 2 m above the top edge, source S at (0, −2, 0.5)).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/error.h"
 #include "diffray/room/scene_file.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -127,6 +131,50 @@ TEST(CompareSceneChecks, AListenerBehindAClosedObjectIsNotOutside) {
   EXPECT_NE(inside[0].find("listener in"), std::string::npos) << inside[0];
   EXPECT_NE(inside[0].find("cupboard/"), std::string::npos) << inside[0];
   EXPECT_EQ(dc::hiddenListenerWarnings(withListener("cupboard.json", "under", Vec3(2, 2, -0.5))).size(), 1u);
+}
+
+TEST(CompareSceneChecks, AimTakesTheSpecularGroundABarrierStandsOn) {
+  // The screen's rigid ground is perpendicular to the panel and below its zone: --aim aims through it too.
+  const dr::Room screen = dr::loadRoom(kRooms + "screen.json");
+  const dc::AimGround g = dc::checkAimReflectors(screen);
+  ASSERT_TRUE(g.present);
+  EXPECT_NEAR(std::abs(g.normal.z()), 1.0, 1e-12);
+  EXPECT_NEAR(g.offset, 0.0, 1e-12);
+  EXPECT_EQ(errorOf([&] { dc::compareScene(screen, wbsdfOnly(true)); }), "");
+  // A ground that scatters: aimed rays only follow its specular reflection.
+  dr::Room rough = screen;
+  for (auto& m : rough.materials)
+    if (m.name == "rigid-ground") m.scattering = diffray::core::bandFill(0.2);
+  const std::string diffuse = errorOf([&] { dc::checkAimReflectors(rough); });
+  EXPECT_NE(diffuse.find("surface ground (rigid-ground) scatters sound diffusely"), std::string::npos) << diffuse;
+  // A second reflector, the wall x = 1 across the zone: refused as before.
+  dr::Room walled = screen;
+  walled.addPolygon({Vec3(1, -5, 0), Vec3(1, 5, 0), Vec3(1, 5, 6), Vec3(1, -5, 6)}, screen.mesh.object_of_triangle[0], "wall");
+  const std::string wall = errorOf([&] { dc::checkAimReflectors(walled); });
+  EXPECT_NE(wall.find("surface wall"), std::string::npos) << wall;
+  EXPECT_NE(wall.find("reflects"), std::string::npos) << wall;
+}
+
+TEST(CompareSceneChecks, AimRefusesAListenerReachedUnderAFloatingPanel) {
+  // The screen lifted 1 m (panel z 1 to 3, zone 3 to 5). Listener (0, 2, 2): the straight line from S crosses
+  // y = 0 at z = 1.25, on the panel (blocked). Reflected off the ground towards its image (0, 2, −2) it meets
+  // the ground at t = 0.5/2.5, y = −2 + 4·0.2 = −1.2, and rises to cross y = 0 at z = 2·1.2/3.2 = 0.75,
+  // through the gap under the panel: no aimed ray takes that path.
+  diffray::test::TempDir dir("aim_floating");
+  std::ifstream in(kRooms + "screen.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string base = "[[-2, 0, 0], [2, 0, 0]]";
+  ASSERT_NE(text.find(base), std::string::npos);
+  text.replace(text.find(base), base.size(), "[[-2, 0, 1], [2, 0, 1]]");
+  std::ofstream(dir.file("floating.json")) << text;
+  dr::Room room = dr::loadRoom(dir.file("floating.json"));
+  room.listeners = {dr::Listener{"gap", Vec3(0, 2, 2), 0.15}};
+  const std::string msg = errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); });
+  EXPECT_NE(msg.find("listener gap at (0, 2, 2) hears source S by a reflection off the ground"), std::string::npos) << msg;
+  // (0, 2, 8): the straight line crosses y = 0 at z = 4.25; reflected, it meets the ground at y = −2 + 4/17
+  // = −30/17 and crosses y = 0 at z = 8·(30/17)/(64/17) = 3.75: both through the zone (3 to 5).
+  room.listeners = {dr::Listener{"high", Vec3(0, 2, 8), 0.15}};
+  EXPECT_EQ(errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); }), "");
 }
 
 TEST(CompareSceneChecks, WrapDegreesIntoTheHalfOpenCircle) {

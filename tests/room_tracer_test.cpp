@@ -90,13 +90,8 @@ TEST(RoomTracer, DirectivityGainHasUnitMeanAndCardioidOnAxis) {
   }
 }
 
-// An aimed emission's weights 1/(4π·pdf) integrate, over the unit square of its two uniforms, to the
-// aim rectangle's solid angle over 4π, whatever the sampling inside it (uniform, or partly log-uniform
-// near the −x edge). Oracle: the solid angle of a rectangle [x1, x2] × [y1, y2] at height h above the
-// foot of the viewpoint, Σ ± atan(x·y/(h·√(x² + y² + h²))) over its corners. Midpoint rule on a 2000 ×
-// 2000 grid whose cell edges include ξ1 = edge_fraction (where the sampling switches branch), so the
-// integrand is smooth in each cell: its error is O(1/N²), below 1e-5 here.
-TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
+// A 1.4 × 0.8 m upright rectangle centred at (1, −0.5, 2), the aimed emissions' target below.
+dt::EmissionTarget uprightTarget() {
   dt::EmissionTarget aim;
   aim.origin = Vec3(1.0, -0.5, 2.0);
   aim.ex = Vec3(0.6, 0.8, 0.0);
@@ -104,6 +99,17 @@ TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
   aim.half_x_m = 0.7;
   aim.half_y_m = 0.4;
   aim.edge_scale_m = 0.01;
+  return aim;
+}
+
+// An aimed emission's weights 1/(4π·pdf) integrate, over the unit square of its two uniforms, to the
+// aim rectangle's solid angle over 4π, whatever the sampling inside it (uniform, or partly log-uniform
+// near the −x edge). Oracle: the solid angle of a rectangle [x1, x2] × [y1, y2] at height h above the
+// foot of the viewpoint, Σ ± atan(x·y/(h·√(x² + y² + h²))) over its corners. Midpoint rule on a 2000 ×
+// 2000 grid whose cell edges include ξ1 = edge_fraction (where the sampling switches branch), so the
+// integrand is smooth in each cell: its error is O(1/N²), below 1e-5 here.
+TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
+  dt::EmissionTarget aim = uprightTarget();
   const Vec3 source(-1.0, 2.5, 1.7);
   const Vec3 n = aim.ex.cross(aim.ey);
   const Vec3 rel = source - aim.origin;
@@ -136,6 +142,48 @@ TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
   const Vec3 d = dt::emissionDirection(nullptr, source, 0.3, 0.7, scale);
   EXPECT_EQ(scale, 1.0);  // uniform emission: weight 1
   EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+}
+
+// Aimed through a ground (EmissionTarget::mirrored): the weights integrate to the solid angles of the
+// rectangle and of its mirror image in the ground, over 4π, and every ray meets the rectangle's plane inside
+// one of the two. Oracle: the same corner formula for each rectangle; the grid's cell edges include ξ2 = ½,
+// where the sampling switches target.
+TEST(RoomTracer, AimedThroughAGroundWeightsIntegrateToBothRectanglesSolidAngles) {
+  dt::EmissionTarget aim = uprightTarget();
+  aim.edge_fraction = 0.25;
+  aim.mirrored = true;
+  aim.mirror_normal = Vec3(0.0, 0.0, 1.0);  // the ground z = 0.5, below the rectangle (z 1.6 to 2.4)
+  aim.mirror_offset = 0.5;
+  const Vec3 source(-1.0, 2.5, 1.7);
+  const Vec3 n = aim.ex.cross(aim.ey);
+  const auto solidAngle = [&](const Vec3& origin) {
+    const Vec3 rel = source - origin;
+    const double h = std::abs(rel.dot(n)), sx = rel.dot(aim.ex), sy = rel.dot(aim.ey);
+    const auto corner = [h](double x, double y) { return std::atan(x * y / (h * std::sqrt(x * x + y * y + h * h))); };
+    const double x1 = -aim.half_x_m - sx, x2 = aim.half_x_m - sx, y1 = -aim.half_y_m - sy, y2 = aim.half_y_m - sy;
+    return corner(x2, y2) - corner(x1, y2) - corner(x2, y1) + corner(x1, y1);
+  };
+  const Vec3 image_origin(1.0, -0.5, -1.0);  // 2·0.5 − 2.0
+  const double omega = solidAngle(aim.origin) + solidAngle(image_origin);
+  const int n_grid = 2000;
+  double sum = 0.0;
+  int to_image = 0;
+  for (int i = 0; i < n_grid; ++i)
+    for (int j = 0; j < n_grid; ++j) {
+      double scale = 0.0;
+      const Vec3 d = dt::emissionDirection(&aim, source, (i + 0.5) / n_grid, (j + 0.5) / n_grid, scale);
+      const double t = -(source - aim.origin).dot(n) / d.dot(n);
+      ASSERT_GT(t, 0.0);
+      const Vec3 hit = source + t * d;
+      const bool image = hit.z() < 0.5;
+      to_image += image;
+      const Vec3 local = hit - (image ? image_origin : aim.origin);
+      ASSERT_LE(std::abs(local.dot(aim.ex)), aim.half_x_m * (1 + 1e-9));
+      ASSERT_LE(std::abs(local.dot(aim.ey)), aim.half_y_m * (1 + 1e-9));
+      sum += scale;
+    }
+  EXPECT_EQ(to_image, n_grid * n_grid / 2);
+  EXPECT_NEAR(sum / (static_cast<double>(n_grid) * n_grid), omega / (4.0 * diffray::core::kPi), 1e-5 * omega);
 }
 
 // The eight-band bounce loop (Octaves: floats relative to the emitted level) against the general one

@@ -298,7 +298,8 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       ->check(CLI::Range(1e-3, 120.0));
   sub->add_flag("--aim", o->aim,
                 "free-field mode: aim every WBSDF ray at the scene's single occluder (valid only when every path to "
-                "the listeners crosses it: an edge or a door in free field)");
+                "the listeners crosses it: an edge or a door in free field, an edge or barrier on a specular ground, "
+                "half the rays then aimed through the ground)");
   sub->add_flag("--json", common.json, "print one JSON object per listener, model and band or frequency (JSON lines)");
   return [o, &common, seed_option, models_option]() {
     core::ThreadLimit limit(common.threads);

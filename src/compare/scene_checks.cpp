@@ -11,6 +11,7 @@
 #include "diffray/core/error.h"
 #include "diffray/room/checks.h"
 #include "diffray/room/json_fields.h"
+#include "diffray/room/occluder_file.h"
 
 namespace diffray::compare {
 
@@ -174,34 +175,60 @@ std::vector<std::string> hiddenListenerWarnings(const room::Room& room) {
   return out;
 }
 
-void checkAimReachesListeners(const room::Room& room, const AimRect& aim) {
+namespace {
+
+// Whether the open segment p→q (its ends excluded by 1e-9 of its length) crosses a solid triangle.
+bool segmentBlocked(const std::vector<Tri>& solid, const Vec3& p, const Vec3& q) {
+  for (const Tri& t : solid)
+    if (room::crossesTriangle(p, q - p, t.a, t.b, t.c, 1e-9, 1.0 - 1e-9)) return true;
+  return false;
+}
+
+// Where the segment p→q crosses the aim rectangle's plane: 0 none, 1 inside the rectangle, −1 outside.
+int throughAim(const AimRect& aim, const Vec3& p, const Vec3& q) {
+  const Vec3 n = aim.ex.cross(aim.ey).normalized();
+  const double dp = (p - aim.origin).dot(n), dq = (q - aim.origin).dot(n);
+  if (!(dp * dq < 0.0)) return 0;
+  const Vec3 x = p + dp / (dp - dq) * (q - p) - aim.origin;
+  return std::abs(x.dot(aim.ex)) <= aim.half_x_m && std::abs(x.dot(aim.ey)) <= aim.half_y_m ? 1 : -1;
+}
+
+}  // namespace
+
+void checkAimReachesListeners(const room::Room& room, const AimRect& aim, const AimGround& ground) {
   if (room.sources.empty()) return;
   const room::Source& s = room.sources[0];
-  const Vec3 n = aim.ex.cross(aim.ey).normalized();
   const std::vector<Tri> solid = solidTriangles(room);
+  const double tol = 1e-9 * sceneScale(room);
   for (const room::Listener& l : room.listeners) {
     const Vec3 p = s.position_m, q = l.position_m;
-    bool blocked = false;
-    for (const Tri& t : solid)  // the open segment p→q, its ends excluded by 1e-9 of its length
-      if (room::crossesTriangle(p, q - p, t.a, t.b, t.c, 1e-9, 1.0 - 1e-9)) {
-        blocked = true;
-        break;
-      }
-    if (blocked) continue;
-    const double dp = (p - aim.origin).dot(n), dq = (q - aim.origin).dot(n);
-    bool through = false;
-    if (dp * dq < 0.0) {
-      const Vec3 x = p + dp / (dp - dq) * (q - p) - aim.origin;
-      through = std::abs(x.dot(aim.ex)) <= aim.half_x_m && std::abs(x.dot(aim.ey)) <= aim.half_y_m;
-    }
-    if (!through)
+    if (!segmentBlocked(solid, p, q) && throughAim(aim, p, q) != 1)
       throw core::InputError("--aim", where(l) + " sees source " + s.name +
                                           " directly along a line that misses the occluder's aim rectangle, so no "
                                           "aimed ray reaches it; run without --aim (or move it)");
+    if (!ground.present) continue;
+    // The path reflected once off the ground: towards the listener's image, to the point r on the ground.
+    const double hp = ground.normal.dot(p) - ground.offset, hq = ground.normal.dot(q) - ground.offset;
+    if (!(hp * hq > 0.0)) continue;
+    const Vec3 r = p + hp / (hp + hq) * ((q - 2.0 * hq * ground.normal) - p);
+    // On a ground triangle, and on no other surface (the foot of a barrier standing on the ground stops it).
+    bool on_ground = false, on_other = false;
+    for (const Tri& t : solid) {
+      const bool near = (room::closestOnTriangle(r, t.a, t.b, t.c) - r).norm() < 1e3 * tol;
+      const bool in_ground = std::abs(ground.normal.dot(t.a) - ground.offset) < 1e3 * tol &&
+                             std::abs(ground.normal.dot(t.b) - ground.offset) < 1e3 * tol &&
+                             std::abs(ground.normal.dot(t.c) - ground.offset) < 1e3 * tol;
+      (in_ground ? on_ground : on_other) |= near;
+    }
+    if (!on_ground || on_other || segmentBlocked(solid, p, r) || segmentBlocked(solid, r, q)) continue;
+    if (throughAim(aim, p, r) != 1 && throughAim(aim, r, q) != 1)
+      throw core::InputError("--aim", where(l) + " hears source " + s.name +
+                                          " by a reflection off the ground that misses the occluder's aim "
+                                          "rectangle, so no aimed ray takes it; run without --aim (or move it)");
   }
 }
 
-void checkAimHasNoReflectors(const room::Room& room) {
+AimGround checkAimReflectors(const room::Room& room) {
   std::set<std::string> occluder_groups;
   for (const auto& o : room.occluders) occluder_groups.insert(o.group);
   // The floor planes that a door's model mirrors (OccluderAxis::mirror_lo): through the lo edge, normal to it.
@@ -214,12 +241,23 @@ void checkAimHasNoReflectors(const room::Room& room) {
   double size = 1.0;  // the mesh's largest coordinate, for a plane tolerance in its float rounding's units
   for (const Vec3& v : m.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
   const double tol = 1e-6 * size;
+  // A ground is possible under one edge or barrier (an edge axis across a uniform one).
+  using Kind = room::OccluderAxis::Kind;
+  const room::Occluder* edge = room.occluders.size() == 1 && room.occluders[0].x.kind == Kind::Edge &&
+                                       room.occluders[0].y.kind == Kind::Uniform
+                                   ? &room.occluders[0]
+                                   : nullptr;
+  AimGround ground;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const std::string& g = t < room.group_of_triangle.size() ? room.group_of_triangle[t] : std::string();
     const int mat = m.object_of_triangle[t];
     if (occluder_groups.count(g) || room.isOpening(mat)) continue;
-    bool reflects = false;
-    for (int b = 0; b < room.bands.size(); ++b) reflects = reflects || room.materials[static_cast<std::size_t>(mat)].absorption[b] < 1.0;
+    const room::Material& material = room.materials[static_cast<std::size_t>(mat)];
+    bool reflects = false, diffuse = false;
+    for (int b = 0; b < room.bands.size(); ++b) {
+      reflects = reflects || material.absorption[b] < 1.0;
+      diffuse = diffuse || (material.absorption[b] < 1.0 && material.scattering[b] > 0.0);
+    }
     if (!reflects) continue;
     const Vec3 v[3] = {m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]], m.vertices[m.triangles[t][2]]};
     bool on_sill = false;
@@ -228,10 +266,34 @@ void checkAimHasNoReflectors(const room::Room& room) {
     // The screen around the occluder: what it reflects stays on the source's side, where --aim has no
     // listener (checkAimReachesListeners).
     if (on_sill || inOccluderPlane(room, {v[0], v[1], v[2], g}, tol)) continue;
-    throw core::InputError("--aim", "surface " + g + " (" + room.materials[static_cast<std::size_t>(mat)].name +
-                                        ") reflects, and aimed rays go straight at the occluder, so the paths that "
-                                        "meet it first would be lost; run without --aim (or make it absorbing)");
+    const std::string named = "surface " + g + " (" + material.name + ")";
+    const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (edge && n.norm() > 0.0) {
+      const Vec3 u = n.normalized();
+      const double offset = u.dot(v[0]);
+      if (ground.present && std::abs(std::abs(u.dot(ground.normal)) - 1.0) < 1e-9 &&
+          std::abs(u.dot(ground.normal) * offset - ground.offset) < tol)
+        continue;  // the ground already found
+      bool cuts = false;
+      double lo = 1e300, hi = -1e300;
+      for (const Vec3& c : room::occluderCorners(*edge))
+        lo = std::min(lo, u.dot(c) - offset), hi = std::max(hi, u.dot(c) - offset);
+      cuts = lo < -tol && hi > tol;
+      if (!ground.present && std::abs(u.dot(edge->normal)) < 1e-9 && !cuts) {
+        if (diffuse)
+          throw core::InputError("--aim", named + " scatters sound diffusely, and aimed rays only follow its "
+                                              "specular reflection; run without --aim (or give it scattering 0)");
+        ground.present = true;
+        ground.normal = u;
+        ground.offset = offset;
+        continue;
+      }
+    }
+    throw core::InputError("--aim", named + " reflects, and aimed rays go straight at the occluder, so the paths "
+                                            "that meet it first would be lost; run without --aim (or make it "
+                                            "absorbing)");
   }
+  return ground;
 }
 
 }  // namespace diffray::compare

@@ -153,7 +153,7 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
     if (room.occluders.empty()) out.warnings.push_back("the scene has no occluders: the WBSDF model is plain geometric acoustics");
     if (o.aim) {
       if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
-      checkAimHasNoReflectors(room);
+      const AimGround ground = checkAimReflectors(room);
       const room::Occluder& d = room.occluders[0];
       aimAtOccluder(w, d);
       if (d.y.kind == Kind::Uniform) {
@@ -173,7 +173,10 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
           w.aim_half_y_m = 0.5 * (hi - lo);
         }
       }
-      checkAimReachesListeners(room, {w.aim_origin, w.aim_ex, w.aim_ey, w.aim_half_x_m, w.aim_half_y_m});
+      checkAimReachesListeners(room, {w.aim_origin, w.aim_ex, w.aim_ey, w.aim_half_x_m, w.aim_half_y_m}, ground);
+      w.aim_mirrored = ground.present;
+      w.aim_mirror_normal = ground.normal;
+      w.aim_mirror_offset = ground.offset;
     }
     const WbsdfLevels lv = wbsdfLevels(room, 0, w);
     out.rays = lv.rays;

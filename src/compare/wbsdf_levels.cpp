@@ -42,7 +42,8 @@ WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOption
   opt.next_event = options.next_event;
   if (options.diffraction && !occluders.empty()) opt.occluders = &occluders;
   transport::EmissionTarget aim{options.aim_origin, options.aim_ex, options.aim_ey, options.aim_half_x_m,
-                                options.aim_half_y_m, options.aim_edge_fraction, options.aim_edge_scale_m};
+                                options.aim_half_y_m, options.aim_edge_fraction, options.aim_edge_scale_m,
+                                options.aim_mirrored, options.aim_mirror_normal, options.aim_mirror_offset};
   if (options.aim) opt.aim = &aim;
   const transport::RoomTraceResult r = transport::traceRoom(room, geometry, source, opt);
 

@@ -65,6 +65,8 @@ core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source
     return core::Vec3(r * std::cos(phi), r * std::sin(phi), z);
   }
   const EmissionTarget& t = *aim;
+  const bool image = t.mirrored && xi2 >= 0.5;
+  if (t.mirrored) xi2 = image ? 2.0 * xi2 - 1.0 : 2.0 * xi2;
   // d: distance from the −x side; uniform, or with probability edge_fraction log-uniform in d + d0.
   const double width = 2.0 * t.half_x_m, d0 = t.edge_scale_m, f = t.edge_fraction;
   const double log_span = std::log((width + d0) / d0);
@@ -72,13 +74,15 @@ core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source
   if (xi1 < f) d = std::min(width, d0 * std::exp(xi1 / f * log_span) - d0);
   else d = (xi1 - f) / (1.0 - f) * width;
   const double pdf_x = (1.0 - f) / width + (f > 0.0 ? f / ((d + d0) * log_span) : 0.0);
-  const core::Vec3 q = t.origin + (d - t.half_x_m) * t.ex + (2.0 * xi2 - 1.0) * t.half_y_m * t.ey;
+  core::Vec3 q = t.origin + (d - t.half_x_m) * t.ex + (2.0 * xi2 - 1.0) * t.half_y_m * t.ey;
+  if (image) q -= 2.0 * (t.mirror_normal.dot(q) - t.mirror_offset) * t.mirror_normal;
   const core::Vec3 to = q - source;
   const double dist2 = to.squaredNorm();
   const core::Vec3 dir = to / std::sqrt(dist2);
   const double cos_t = std::abs(dir.dot(t.ex.cross(t.ey)));
   // 1/(4π·pdf per steradian), pdf = pdf_x·pdf_y·r²/cosθ with pdf_y = 1/(2·half_y).
   scale = cos_t * 2.0 * t.half_y_m / (pdf_x * 4.0 * core::kPi * dist2);
+  if (t.mirrored) scale *= 2.0;  // each target takes half the rays
   return dir;
 }
 

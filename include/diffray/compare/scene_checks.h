@@ -29,17 +29,28 @@ struct AimRect {
   double half_x_m = 0.0, half_y_m = 0.0;
 };
 
-/// `--aim`: throws core::InputError naming the first listener whose straight line from source 0 is blocked
-/// by no surface (the occluders' own rectangles aside) yet does not pass through `aim`: no aimed ray reaches
-/// it directly, so its WBSDF level would lack the direct sound.
-void checkAimReachesListeners(const room::Room& room, const AimRect& aim);
+/// The specular ground `--aim` also aims through (transport::EmissionTarget::mirrored): the plane
+/// normal·p = offset, when `present`.
+struct AimGround {
+  bool present = false;
+  core::Vec3 normal{0, 0, 1};
+  double offset = 0.0;
+};
+
+/// `--aim`: throws core::InputError naming the first listener that an unblocked path from source 0 reaches
+/// (the occluders' own rectangles aside) without passing through `aim`: the straight line, and with a
+/// `ground` the path reflected once off it. No aimed ray takes such a path, so the listener's WBSDF level
+/// would lack it.
+void checkAimReachesListeners(const room::Room& room, const AimRect& aim, const AimGround& ground = {});
 
 /// `--aim`: throws core::InputError naming the first reflecting surface (a material that does not absorb
-/// everything in every band) outside the occluders' own groups: aimed rays go straight at the occluder, so
-/// the paths that meet such a surface first (a rigid ground before a barrier) would be dropped. A door's
-/// sill floor is allowed (the door's model takes the floor in by the image principle), and so is the screen
-/// in the occluder's own plane (what it reflects stays on the source's side).
-void checkAimHasNoReflectors(const room::Room& room);
+/// everything in every band) outside the occluders' own groups that the aimed rays cannot take into
+/// account: aimed rays go straight at the occluder, so the paths that meet such a surface first would be
+/// dropped. Allowed: a door's sill floor (the door's model takes the floor in by the image principle), the
+/// screen in the occluder's own plane (what it reflects stays on the source's side), and for an edge or a
+/// barrier one plane perpendicular to its plane that leaves its zone on one side and reflects specularly in
+/// every band (scattering 0): the ground it stands on, returned, which the rays are then aimed through too.
+AimGround checkAimReflectors(const room::Room& room);
 
 /// The angle `deg` wrapped into (−180°, 180°].
 double wrapDegrees(double deg);

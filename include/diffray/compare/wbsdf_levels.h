@@ -31,6 +31,10 @@ struct WbsdfRunOptions {
   core::Vec3 aim_origin{0, 0, 0}, aim_ex{1, 0, 0}, aim_ey{0, 1, 0};
   double aim_half_x_m = 0.0, aim_half_y_m = 0.0;
   double aim_edge_fraction = 0.0, aim_edge_scale_m = 0.01;
+  /// Half the rays toward the rectangle's image in this ground plane (transport::EmissionTarget::mirrored).
+  bool aim_mirrored = false;
+  core::Vec3 aim_mirror_normal{0, 0, 1};
+  double aim_mirror_offset = 0.0;
 };
 
 struct WbsdfLevels {

@@ -33,11 +33,19 @@ namespace diffray::transport {
 /// so only paths through the rectangle are sampled: exact when nothing else reaches the listeners.
 /// With edge_fraction > 0, that fraction of the points is drawn near the rectangle's −x side (an edge):
 /// the distance d from it log-uniform in d + edge_scale_m, where a diffracting edge sends rays widest.
+/// With `mirrored`, half the rays (xi2 < ½) go to the rectangle and half to its mirror image in the plane
+/// mirror_normal·p = mirror_offset (a specular ground perpendicular to the rectangle, not cutting it): rays
+/// toward the image reflect off the ground and reach the rectangle (the image source's paths). The rectangle
+/// and its image lie in one plane without overlapping, so a direction reaches at most one of them and its
+/// pdf is half that target's.
 struct EmissionTarget {
   core::Vec3 origin{0, 0, 0}, ex{1, 0, 0}, ey{0, 1, 0};
   double half_x_m = 1.0, half_y_m = 1.0;
   double edge_fraction = 0.0;
   double edge_scale_m = 0.01;
+  bool mirrored = false;
+  core::Vec3 mirror_normal{0, 0, 1};
+  double mirror_offset = 0.0;
 };
 
 /// The direction of an emitted ray from two uniforms in [0, 1) (xi1 the first): uniform over the sphere
