@@ -4,7 +4,7 @@
 // shifted by its Data.Delay (M × R and 1 × R, whole samples at the file's rate), less the common lead the
 // reader drops, to one float rounding; read at 44.1 kHz, each pulse keeps its time in seconds within one
 // sample and every HRIR the same energy. SOFA files that are valid netCDF but no two-ear HRTF set (another
-// convention, three receivers, no Data.IR, no sampling rate) are refused in one line.
+// convention, three receivers, no Data.IR, no sampling rate, a negative or NaN delay) are refused in one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -251,6 +251,14 @@ TEST(HrtfSofa, SofaFilesThatAreNoTwoEarHrtfSetRefusedInOneLine) {
   SofaText no_rate = good;
   no_rate.with_rate = false;
   refuses("no_rate", no_rate, "not an HRTF set");
+  // Delays libmysofa's check lets through: a negative one would move taps before the HRIR's buffer.
+  SofaText negative = good;
+  negative.delays = "0, -3";
+  refuses("negative", negative, "delays are out of range");
+  SofaText nan = good;
+  nan.delay_dims = "M, R";
+  nan.delays = "0, 0, 0, 0, 0, NaN, 0, 0, 0, 0, 0, 0";
+  refuses("nan", nan, "delays are out of range");
 }
 
 }  // namespace
