@@ -37,7 +37,9 @@ double tapOf(const std::vector<double>& pulse, int i) {
 }
 
 // A SimpleFreeFieldHRIR set with everything mysofa_check asks for (SOFA conventions and data type, room
-// type, E = I = 1, C = 3, an emitter at the origin, receivers on the y axis, sources M × C).
+// type, E = I = 1, C = 3, an emitter at the origin, receivers on the y axis, sources M × C), and the global
+// attributes SOFA requires: libmysofa 1.3.1 cannot read a file with fewer than nine of them (it reports an
+// unsupported format).
 struct SofaText {
   std::string conventions = "SimpleFreeFieldHRIR";
   double rate_hz = 48000.0;
@@ -100,6 +102,19 @@ std::string writeSofa(const test::TempDir& dir, const std::string& name, const S
   return std::system(command.c_str()) == 0 ? out : std::string();
 }
 
+// Data.Delay of the M × R sets, in samples at 48 kHz; the longest is 7, the earliest delayed start
+// onset(0, 0) + 0 = 40.
+constexpr int kDelay[kM][2] = {{0, 3}, {1, 0}, {2, 5}, {7, 1}, {0, 0}, {4, 2}};
+
+SofaText perMeasurementDelays(const std::vector<double>& pulse) {
+  SofaText s;
+  s.pulse = pulse;
+  s.delay_dims = "M, R";
+  for (int m = 0; m < kM; ++m)
+    for (int r = 0; r < 2; ++r) s.delays += (m + r ? ", " : "") + std::to_string(kDelay[m][r]);
+  return s;
+}
+
 // Measurement m, ear r of `h` against the stored pulse starting at `at` times `gain`, every other tap zero.
 void expectPulseAt(const Hrtf& h, int m, int r, int at, const std::vector<double>& pulse, double gain, double tol,
                    double& worst) {
@@ -118,10 +133,7 @@ void expectPulseAt(const Hrtf& h, int m, int r, int at, const std::vector<double
 TEST(HrtfSofa, At48kHzPerMeasurementDelaysShiftEachHrir) {
   if (!haveNcgen()) GTEST_SKIP() << kNoNcgen;
   const test::TempDir dir("sofa_mr");
-  SofaText s;
-  s.delay_dims = "M, R";
-  const int delay[kM][2] = {{0, 3}, {1, 0}, {2, 5}, {7, 1}, {0, 0}, {4, 2}};
-  s.delays = "0, 3, 1, 0, 2, 5, 7, 1, 0, 0, 4, 2";
+  const SofaText s = perMeasurementDelays({1.0, -0.5});
   const std::string path = writeSofa(dir, "mr", s);
   ASSERT_FALSE(path.empty());
   const Hrtf h = Hrtf::load(path, 48000.0);
@@ -146,7 +158,7 @@ TEST(HrtfSofa, At48kHzPerMeasurementDelaysShiftEachHrir) {
   double worst = 0.0;
   for (int m = 0; m < kM; ++m)
     for (int r = 0; r < 2; ++r)
-      expectPulseAt(h, m, r, onset(m, r) + delay[m][r] - dropped, s.pulse, gain, 5.4e-8, worst);
+      expectPulseAt(h, m, r, onset(m, r) + kDelay[m][r] - dropped, s.pulse, gain, 5.4e-8, worst);
   std::cout << "[ measured ] M x R delays: largest tap error " << worst << "\n";
 }
 
@@ -183,12 +195,7 @@ TEST(HrtfSofa, A48kHzSetReadAt44100HzKeepsEachPulsesTimeAndEnergy) {
   // last pulse, so each side loses at most Σ_{n>30} 1/(π n)² < 1/(30 π²) ≈ 0.34 %: within 1 % in all.
   if (!haveNcgen()) GTEST_SKIP() << kNoNcgen;
   const test::TempDir dir("sofa_rate");
-  SofaText s;
-  s.pulse = {1.0};
-  s.delay_dims = "M, R";
-  const int delay[kM][2] = {{0, 3}, {1, 0}, {2, 5}, {7, 1}, {0, 0}, {4, 2}};
-  s.delays = "0, 3, 1, 0, 2, 5, 7, 1, 0, 0, 4, 2";
-  const std::string path = writeSofa(dir, "rate", s);
+  const std::string path = writeSofa(dir, "rate", perMeasurementDelays({1.0}));
   ASSERT_FALSE(path.empty());
   const Hrtf h = Hrtf::load(path, 44100.0);
   EXPECT_EQ(h.fileRateHz(), 48000.0);
@@ -205,7 +212,7 @@ TEST(HrtfSofa, A48kHzSetReadAt44100HzKeepsEachPulsesTimeAndEnergy) {
   double worst_time = 0.0, worst_energy = 0.0;
   for (int m = 0; m < kM; ++m)
     for (int r = 0; r < 2; ++r) {
-      const double want = (onset(m, r) + delay[m][r] - onset(0, 0) - delay[0][0]) * ratio;
+      const double want = (onset(m, r) + kDelay[m][r] - onset(0, 0) - kDelay[0][0]) * ratio;
       EXPECT_NEAR(peak(m, r) - p0, want, 1.0) << "measurement " << m << " ear " << r;
       worst_time = std::max(worst_time, std::abs(peak(m, r) - p0 - want));
       double energy = 0.0;
