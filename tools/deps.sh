@@ -9,6 +9,7 @@ DIFFRAY_PACKAGES+=(libpng-dev)  # PNG output of rendered images
 DIFFRAY_PACKAGES+=(libopenexr-dev)  # OpenEXR (float) output of rendered images
 DIFFRAY_PACKAGES+=(libmysofa-dev)  # SOFA HRTFs for binaural IRs; libmysofa1 ships the MIT KEMAR set
 DIFFRAY_PACKAGES+=(sox)  # tests/wav_readers.sh: sox reads every WAV diffray writes
+DIFFRAY_PACKAGES+=(netcdf-bin)  # ncgen: the SOFA test fixtures (tests/spatial_sofa_test.cpp) written from CDL text
 DIFFRAY_PACKAGES+=(python3-dev python3-pybind11 python3-numpy python3-pytest)  # the Python module (src/python)
 # Only the sanitizer build (tools/sanitize, tools/fuzz) adds these: clang with its sanitizer runtimes
 # (AddressSanitizer, UBSan, libFuzzer).

@@ -52,15 +52,20 @@ Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
     throw core::InputError(h.path_, "the HRTF set's sampling rate is not a positive number");
   mysofa_tocartesian(sofa.get());
   // Per-measurement (M × R) or per-receiver (R) delays, in samples at the file's rate: whole samples ahead.
-  const auto delay = [&](unsigned m, unsigned r) -> long {
-    if (s.DataDelay.elements == s.M * s.R) return std::lround(s.DataDelay.values[m * s.R + r]);
-    if (s.DataDelay.elements == s.R) return std::lround(s.DataDelay.values[r]);
-    return 0;
+  // Each must be a number in [0, 100000] (a negative one would shift taps before the buffer).
+  const auto stored = [&](unsigned m, unsigned r) -> double {
+    if (s.DataDelay.elements == s.M * s.R) return s.DataDelay.values[m * s.R + r];
+    if (s.DataDelay.elements == s.R) return s.DataDelay.values[r];
+    return 0.0;
   };
+  const auto delay = [&](unsigned m, unsigned r) { return std::lround(stored(m, r)); };
   long longest = 0;
   for (unsigned m = 0; m < s.M; ++m)
-    for (unsigned r = 0; r < 2; ++r) longest = std::max(longest, delay(m, r));
-  if (longest < 0 || longest > 100000) throw core::InputError(h.path_, "the HRTF set's delays are out of range");
+    for (unsigned r = 0; r < 2; ++r) {
+      if (!(stored(m, r) >= 0.0 && stored(m, r) <= 100000.0))
+        throw core::InputError(h.path_, "the HRTF set's delays are out of range (each a number of samples in [0, 100000])");
+      longest = std::max(longest, delay(m, r));
+    }
   const std::size_t n_file = s.N + static_cast<std::size_t>(longest);
   std::vector<std::vector<float>> irs;  // per measurement: interleaved left, right at the file's rate
   for (unsigned m = 0; m < s.M; ++m) {
