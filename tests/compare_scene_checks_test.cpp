@@ -147,6 +147,16 @@ TEST(CompareSceneChecks, AimTakesTheSpecularGroundABarrierStandsOn) {
     if (m.name == "rigid-ground") m.scattering = diffray::core::bandFill(0.2);
   const std::string diffuse = errorOf([&] { dc::checkAimReflectors(rough); });
   EXPECT_NE(diffuse.find("surface ground (rigid-ground) scatters sound diffusely"), std::string::npos) << diffuse;
+  // A scattering patch on the same ground, beside the specular part: refused too.
+  dr::Room patched = screen;
+  dr::Material gravel = screen.materials[static_cast<std::size_t>(screen.mesh.object_of_triangle[0])];
+  gravel.name = "gravel";
+  gravel.scattering = diffray::core::bandFill(0.3);
+  patched.materials.push_back(gravel);
+  patched.addPolygon({Vec3(30, -30, 0), Vec3(40, -30, 0), Vec3(40, 30, 0), Vec3(30, 30, 0)},
+                     static_cast<int>(patched.materials.size()) - 1, "patch");
+  const std::string patch = errorOf([&] { dc::checkAimReflectors(patched); });
+  EXPECT_NE(patch.find("surface patch (gravel) scatters sound diffusely"), std::string::npos) << patch;
   // A second reflector, the wall x = 1 across the zone: refused as before.
   dr::Room walled = screen;
   walled.addPolygon({Vec3(1, -5, 0), Vec3(1, 5, 0), Vec3(1, 5, 6), Vec3(1, -5, 6)}, screen.mesh.object_of_triangle[0], "wall");

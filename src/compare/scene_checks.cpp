@@ -271,18 +271,17 @@ AimGround checkAimReflectors(const room::Room& room) {
     if (edge && n.norm() > 0.0) {
       const Vec3 u = n.normalized();
       const double offset = u.dot(v[0]);
-      if (ground.present && std::abs(std::abs(u.dot(ground.normal)) - 1.0) < 1e-9 &&
-          std::abs(u.dot(ground.normal) * offset - ground.offset) < tol)
-        continue;  // the ground already found
-      bool cuts = false;
+      const bool in_ground = ground.present && std::abs(std::abs(u.dot(ground.normal)) - 1.0) < 1e-9 &&
+                             std::abs(u.dot(ground.normal) * offset - ground.offset) < tol;
       double lo = 1e300, hi = -1e300;
       for (const Vec3& c : room::occluderCorners(*edge))
         lo = std::min(lo, u.dot(c) - offset), hi = std::max(hi, u.dot(c) - offset);
-      cuts = lo < -tol && hi > tol;
-      if (!ground.present && std::abs(u.dot(edge->normal)) < 1e-9 && !cuts) {
+      const bool cuts = lo < -tol && hi > tol;
+      if (in_ground || (!ground.present && std::abs(u.dot(edge->normal)) < 1e-9 && !cuts)) {
         if (diffuse)
           throw core::InputError("--aim", named + " scatters sound diffusely, and aimed rays only follow its "
                                               "specular reflection; run without --aim (or give it scattering 0)");
+        if (in_ground) continue;  // another part of the ground already found
         ground.present = true;
         ground.normal = u;
         ground.offset = offset;

@@ -340,12 +340,12 @@ namespace {
 
 // The plane next-event estimation reaches listeners through (Tracer::nextEventViaFloor), or −1.
 // A door: its floor (sill), the mirror plane through its bottom edge, perpendicular to it. An edge or a
-// barrier (an edge axis across a uniform one): the plane nearest its edge among those perpendicular to the
-// occluder's plane that leave its whole zone on one side, the ground a barrier stands on. Mirroring in a
+// barrier (an edge axis across a uniform one): the plane nearest its edge among the reflecting ones
+// perpendicular to the occluder's plane that leave its whole zone on one side, the ground a barrier stands on. Mirroring in a
 // plane perpendicular to the occluder keeps the listener's image on the listener's side of it, where the
 // estimate applies; any such plane gives an unbiased estimate (the tracer skips exactly the paths it
 // covers), the nearest the one most paths take.
-int floorPlaneOf(const room::Occluder& o, const RoomGeometry& geometry, double eps_m) {
+int floorPlaneOf(const room::Room& room, const room::Occluder& o, const RoomGeometry& geometry, double eps_m) {
   using Kind = room::OccluderAxis::Kind;
   const auto& planes = geometry.planes();
   if (o.y.kind == Kind::Opening && o.y.mirror_lo) {
@@ -365,6 +365,11 @@ int floorPlaneOf(const room::Occluder& o, const RoomGeometry& geometry, double e
   for (std::size_t p = 0; p < planes.size(); ++p) {
     const MirrorPlane& mp = planes[p];
     if (std::abs(mp.normal.dot(o.normal)) > 1e-9) continue;
+    bool reflects = false;  // a plane that absorbs everything has no paths to estimate
+    for (int t : mp.triangles)
+      for (int b = 0; b < room.bands.size(); ++b)
+        reflects = reflects || room.materials[static_cast<std::size_t>(geometry.triangle(t).material)].absorption[b] < 1.0;
+    if (!reflects) continue;
     double lo = 1e300, hi = -1e300;
     for (const Vec3& c : corners) lo = std::min(lo, mp.normal.dot(c) - mp.offset), hi = std::max(hi, mp.normal.dot(c) - mp.offset);
     if (lo < -eps_m && hi > eps_m) continue;  // it cuts the zone
@@ -415,7 +420,7 @@ RoomTraceResult traceRoom(const room::Room& room, const RoomGeometry& geometry, 
 
   if (options.occluders)
     for (int k = 0; k < options.occluders->size(); ++k)
-      tr.floor_plane.push_back(floorPlaneOf(options.occluders->occluder(k), geometry, tr.eps_m));
+      tr.floor_plane.push_back(floorPlaneOf(room, options.occluders->occluder(k), geometry, tr.eps_m));
   const Vec3 axis = src.directivity.axis.normalized();
   for (int t = 0; t < static_cast<int>(room.mesh.triangleCount()); ++t) {
     const int m = geometry.triangle(t).material;
