@@ -11,6 +11,7 @@
 #include <iterator>
 #include <string>
 
+#include "diffray/compare/point_models.h"
 #include "diffray/compare/scene_checks.h"
 #include "diffray/compare/scene_compare.h"
 #include "diffray/core/error.h"
@@ -185,6 +186,33 @@ TEST(CompareSceneChecks, AimRefusesAListenerReachedUnderAFloatingPanel) {
   // = −30/17 and crosses y = 0 at z = 8·(30/17)/(64/17) = 3.75: both through the zone (3 to 5).
   room.listeners = {dr::Listener{"high", Vec3(0, 2, 8), 0.15}};
   EXPECT_EQ(errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); }), "");
+}
+
+TEST(CompareSceneChecks, ABarriersSideEdgesKeepItsExactModelAndRefuseAim) {
+  // rooms/screen.json with "side_edges": three occluders, one object. The exact model is the same BTM plate
+  // (equal values at a listener, 250 Hz and 1 kHz); --aim is refused, since it aims at one zone only.
+  diffray::test::TempDir dir("side_edges");
+  std::ifstream in(kRooms + "screen.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string key = "\"extent_m\": 2.0}";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), "\"extent_m\": 2.0, \"side_edges\": true}");
+  std::ofstream(dir.file("sides.json")) << text;
+  const dr::Room sides = dr::loadRoom(dir.file("sides.json"));
+  const dr::Room plain = dr::loadRoom(kRooms + "screen.json");
+  ASSERT_EQ(sides.occluders.size(), 3u);
+  std::string why_not, assumption, why_not_plain, assumption_plain;
+  const auto with = dc::exactModelFor(sides, 343.0, why_not, assumption, false);
+  const auto without = dc::exactModelFor(plain, 343.0, why_not_plain, assumption_plain, false);
+  ASSERT_TRUE(with) << why_not;
+  ASSERT_TRUE(without) << why_not_plain;
+  EXPECT_EQ(assumption, assumption_plain);
+  const auto a = with->relativePressure(plain.sources[0].position_m, plain.listeners[0].position_m, {250.0, 1000.0});
+  const auto b = without->relativePressure(plain.sources[0].position_m, plain.listeners[0].position_m, {250.0, 1000.0});
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]);
+  const std::string msg = errorOf([&] { dc::compareScene(sides, wbsdfOnly(true)); });
+  EXPECT_NE(msg.find("side edges"), std::string::npos) << msg;
+  EXPECT_EQ(errorOf([&] { dc::compareScene(sides, wbsdfOnly(false)); }), "");
 }
 
 TEST(CompareSceneChecks, WrapDegreesIntoTheHalfOpenCircle) {

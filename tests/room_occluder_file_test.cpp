@@ -317,6 +317,37 @@ TEST(RoomOccluderFile, BarrierAddsItsPanelAndAnEdgeZoneAboveIt) {
   EXPECT_TRUE(room.isOpening(*zone.materials.begin()));
 }
 
+TEST(RoomOccluderFile, BarrierWithSideEdgesAddsAZoneBesideEach) {
+  // The 4 × 2 m panel from (2, 5, 0) to (6, 5, 0): side0 at x = 2 opens toward −x, side1 at x = 6 toward +x,
+  // each a 1 × 2 m zone in the plane y = 5 beside its edge (x in [1, 2] and [6, 7], z in [0, 2]).
+  auto scene = baseScene();
+  scene["occluders"] = {{{"type", "barrier"}, {"name", "b"}, {"base", {{2, 5, 0}, {6, 5, 0}}}, {"height_m", 2},
+                         {"material", "m"}, {"extent_m", 1}, {"side_edges", true}}};
+  const dr::Room room = parse(scene);
+  ASSERT_EQ(room.occluders.size(), 3u);
+  EXPECT_EQ(room.occluders[0].type, "barrier");
+  const double centre_x[2] = {1.5, 6.5}, open_x[2] = {-1.0, 1.0};
+  for (int i = 1; i <= 2; ++i) {
+    const dr::Occluder& s = room.occluders[static_cast<std::size_t>(i)];
+    EXPECT_EQ(s.name, "b/side" + std::to_string(i - 1));
+    EXPECT_EQ(s.type, "barrier side");
+    EXPECT_EQ(s.x.kind, Kind::Edge);
+    EXPECT_EQ(s.x.faces, room.occluders[0].x.faces);
+    expectRightHandedFrame(s);
+    expectVec(s.ex, dr::Vec3(open_x[i - 1], 0, 0), "ex away from the panel");
+    expectVec(s.ey, dr::Vec3(0, 0, 1), "ey up the side edge");
+    expectVec(s.origin_m, dr::Vec3(centre_x[i - 1], 5, 1), "zone centre");
+    EXPECT_DOUBLE_EQ(s.half_x_m, 0.5);
+    EXPECT_DOUBLE_EQ(s.half_y_m, 1.0);
+    EXPECT_NEAR(groupInfo(room, s.group).area_m2, 2.0, 1e-12);
+  }
+  const auto own = dr::ownOccluders(room);
+  ASSERT_EQ(own.size(), 1u);
+  EXPECT_EQ(own[0], &room.occluders[0]);
+  scene["occluders"][0]["side_edges"] = 1;
+  EXPECT_THROW(parse(scene), diffray::core::InputError);
+}
+
 TEST(RoomOccluderFile, GratingReflectsInItsMaterial) {
   auto scene = baseScene();
   scene["occluders"] = {{{"type", "grating"}, {"name", "g"}, {"centre", {9.5, 4, 1.5}}, {"normal", {-1, 0, 0}},

@@ -2,10 +2,13 @@
 // the quadrature's value against brute-force sampling of the same scattering at one hit point (the oracle:
 // RoomOccluders::scatter and the sphere's own chord, averaged over many draws), and whole traces with and
 // without it agreeing within their standard errors (it must change the noise, not the mean), and on a
-// barrier standing on a rigid ground, the estimate through the ground and rays aimed through it as well.
+// barrier standing on a rigid ground, the estimate through the ground and rays aimed through it as well,
+// and with zones beside the barrier's side edges.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "diffray/compare/scene_checks.h"
@@ -14,6 +17,7 @@
 #include "diffray/receiver/sphere.h"
 #include "diffray/transport/room_occluders.h"
 #include "diffray/validate/diffraction_setup.h"
+#include "temp_dir.h"
 
 namespace dt = diffray::transport;
 namespace dv = diffray::validate;
@@ -151,4 +155,26 @@ TEST(StatOccluderNextEvent, BarrierOnAGroundPlainEstimatedAndAimedAgree) {
   // What aiming through the ground buys: at 63 Hz, a fifth of the rays for a smaller standard error.
   for (std::size_t l = 0; l < room.listeners.size(); ++l)
     EXPECT_LT(aimed.listeners[l][0].ratio_std_error, uniform.listeners[l][0].ratio_std_error) << "listener " << l;
+}
+
+TEST(StatOccluderNextEvent, BarrierSideEdgesPlainAndEstimatedAgree) {
+  // rooms/screen.json with "side_edges": the top edge's zone and one beside each side edge, all on the
+  // rigid ground. Two wide spheres clear of the panel and the ground, one behind the middle and one past the
+  // side edge at x = 2; uniform emission with and without next-event estimation must agree.
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(DIFFRAY_SOURCE_DIR) + "/rooms/screen.json"));
+  scene["occluders"][0]["side_edges"] = true;
+  diffray::test::TempDir dir("nee_sides");
+  std::ofstream(dir.file("sides.json")) << scene.dump();
+  dr::Room room = dr::loadRoom(dir.file("sides.json"));
+  ASSERT_EQ(room.occluders.size(), 3u);
+  room.listeners = {dr::Listener{"behind", Vec3(0, 3, 1.6), 1.1}, dr::Listener{"past", Vec3(2.8, 3, 1.1), 1.0}};
+  diffray::compare::WbsdfRunOptions w;
+  w.rays = 1000000;
+  w.seed = 3;
+  const auto estimated = diffray::compare::wbsdfLevels(room, 0, w);
+  w.next_event = false;
+  w.rays = 4000000;
+  w.seed = 5;
+  const auto plain = diffray::compare::wbsdfLevels(room, 0, w);
+  expectSameMeans(room, estimated, plain);
 }

@@ -11,6 +11,7 @@
 #include "diffray/reference/btm_box.h"
 #include "diffray/reference/btm_spectrum.h"
 #include "diffray/room/json_fields.h"
+#include "diffray/room/occluder_file.h"
 
 namespace diffray::compare {
 
@@ -113,11 +114,12 @@ bool rigid(const room::Room& room, int material) {
 }  // namespace
 
 std::unique_ptr<PointModel> btmModelFor(const room::Room& room, double c, std::string& why_not, std::string& assumption) {
-  if (room.occluders.size() != 1 || room.occluders[0].type != "barrier") {
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);  // a barrier's side zones are its own
+  if (own.size() != 1 || own[0]->type != "barrier") {
     why_not = "the BTM reference fits one barrier";
     return nullptr;
   }
-  const room::Occluder& o = room.occluders[0];
+  const room::Occluder& o = *own[0];
   const std::string group = "barrier:" + o.name;
   if (o.x.faces == room::OccluderAxis::Faces::Soft) {
     why_not = "the BTM reference is for rigid plates; barrier " + o.name + " has soft faces";

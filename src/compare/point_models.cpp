@@ -8,6 +8,7 @@
 #include "diffray/core/error.h"
 #include "diffray/reference/aperture_point.h"
 #include "diffray/reference/half_plane_point.h"
+#include "diffray/room/occluder_file.h"
 #include "diffray/transport/room_geometry.h"
 #include "diffray/utd/paths.h"
 
@@ -130,14 +131,19 @@ class UtdPointModel : public PointModel {
 std::unique_ptr<PointModel> exactModelFor(const room::Room& room, double c, std::string& why_not,
                                           std::string& assumption, bool incoherent_floor) {
   if (room.occluders.empty()) return btmBoxModelFor(room, c, why_not, assumption);
-  if (room.occluders.size() != 1) {
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);
+  if (own.size() != 1) {
     why_not = "the exact references fit a scene with exactly one occluder (an edge/barrier or a door/slit); this one has " +
-              std::to_string(room.occluders.size());
+              std::to_string(own.size());
     return nullptr;
   }
   std::string btm_why_not;
   if (auto btm = btmModelFor(room, c, btm_why_not, assumption)) return btm;
-  const room::Occluder& o = room.occluders[0];
+  if (own.size() != room.occluders.size()) {  // side edges: no infinite half-plane stands for them
+    why_not = btm_why_not + " (barrier " + own[0]->name + " diffracts at its side edges too)";
+    return nullptr;
+  }
+  const room::Occluder& o = *own[0];
   if (o.x.kind == Kind::Edge && o.y.kind == Kind::Uniform) {
     assumption = "exact: Macdonald's point source on an infinite thin " +
                  std::string(o.x.faces == room::OccluderAxis::Faces::Soft ? "soft" : "rigid") + " half-plane along the edge of occluder " + o.name;

@@ -13,6 +13,7 @@
 #include "diffray/compare/wbsdf_levels.h"
 #include "diffray/core/error.h"
 #include "diffray/room/air.h"
+#include "diffray/room/occluder_file.h"
 
 namespace diffray::compare {
 
@@ -74,16 +75,18 @@ void pointRows(const room::Room& room, const PointModel& m, const CompareOptions
 // Whether the listener at `p` is on the far side of the room's single opening (door or slit) from source 0,
 // where a shadow boundary of the opening exists; true for every other scene (an edge's angle runs all round it).
 bool beyondOccluder(const room::Room& room, const Vec3& p) {
-  if (room.occluders.size() != 1 || room.occluders[0].x.kind == Kind::Edge) return true;
-  const room::Occluder& d = room.occluders[0];
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);
+  if (own.size() != 1 || own[0]->x.kind == Kind::Edge) return true;
+  const room::Occluder& d = *own[0];
   return (room.sources[0].position_m - d.origin_m).dot(d.normal) * (p - d.origin_m).dot(d.normal) < 0.0;
 }
 
 }  // namespace
 
 std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source, const Vec3& listener) {
-  if (room.occluders.size() != 1) return std::nullopt;
-  const room::Occluder& o = room.occluders[0];
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);  // a barrier's: its top edge's angle
+  if (own.size() != 1) return std::nullopt;
+  const room::Occluder& o = *own[0];
   if (o.x.kind == Kind::Edge) {
     // Around the edge, in the plane across it: angles from the screen face (−ex), the source's side +.
     const Vec3 e0 = o.origin_m - o.half_x_m * o.ex;
@@ -152,6 +155,9 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
     w.on_progress = o.on_progress;
     if (room.occluders.empty()) out.warnings.push_back("the scene has no occluders: the WBSDF model is plain geometric acoustics");
     if (o.aim) {
+      if (room::ownOccluders(room).size() != room.occluders.size())
+        throw core::InputError("--aim", "aims at one edge zone, and the barrier's side edges (side_edges) have zones of "
+                                        "their own; run without --aim");
       if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
       const AimGround ground = checkAimReflectors(room);
       const room::Occluder& d = room.occluders[0];

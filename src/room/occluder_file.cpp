@@ -161,6 +161,13 @@ void claimName(std::set<std::string>& names, const std::string& name, const Json
 
 }  // namespace
 
+std::vector<const Occluder*> ownOccluders(const Room& room) {
+  std::vector<const Occluder*> out;
+  for (const Occluder& o : room.occluders)
+    if (o.type != "barrier side") out.push_back(&o);
+  return out;
+}
+
 std::vector<Vec3> occluderCorners(const Occluder& o) {
   const Vec3 hx = o.half_x_m * o.ex, hy = o.half_y_m * o.ey;
   return {o.origin_m - hx - hy, o.origin_m + hx - hy, o.origin_m + hx + hy, o.origin_m - hx + hy};
@@ -222,7 +229,7 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m", "faces"});
         zone = edgeZoneOccluder(o["start"].vec3(), o["end"].vec3(), o["open_toward"].vec3(), edgeZone(o), o.where());
       } else {
-        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m", "faces"});
+        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m", "faces", "side_edges"});
         const JsonField base = o["base"];
         base.arraySize(2);
         const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
@@ -240,6 +247,24 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       zone.x.faces = faces(o, OccluderAxis::Faces::Rigid);
       zone.name = name;
       addOccluderRect(room, zone);
+      if (type == "barrier" && o.has("side_edges") && o["side_edges"].boolean()) {
+        // The panel's two side edges, each with a zone of the same extent beside it in the panel's plane,
+        // open away from the panel (the corners' quarter-planes beyond both zones stay plain).
+        const JsonField base = o["base"];
+        const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
+        const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
+        const double h = o["height_m"].length();
+        const Vec3 ends[2][2] = {{p0, p1}, {p1, p0}};
+        const char* sides[2] = {"/side0", "/side1"};
+        for (int e = 0; e < 2; ++e) {
+          Occluder side = edgeZoneOccluder(ends[e][0], ends[e][0] + h * up, ends[e][0] - ends[e][1], edgeZone(o), o.where());
+          side.type = "barrier side";
+          side.x.faces = zone.x.faces;
+          side.name = name + sides[e];
+          claimName(names, side.name, o);
+          addOccluderRect(room, side);
+        }
+      }
     } else if (type == "grating") {
       o.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation_m",
                    "material"});
