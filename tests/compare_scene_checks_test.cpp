@@ -188,9 +188,9 @@ TEST(CompareSceneChecks, AimRefusesAListenerReachedUnderAFloatingPanel) {
   EXPECT_EQ(errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); }), "");
 }
 
-TEST(CompareSceneChecks, ABarriersSideEdgesKeepItsExactModelAndRefuseAim) {
+TEST(CompareSceneChecks, ABarriersSideEdgesKeepItsExactModelAndItsAim) {
   // rooms/screen.json with "side_edges": three occluders, one object. The exact model is the same BTM plate
-  // (equal values at a listener, 250 Hz and 1 kHz); --aim is refused, since it aims at one zone only.
+  // (equal values at a listener, 250 Hz and 1 kHz); --aim aims at the three zones.
   diffray::test::TempDir dir("side_edges");
   std::ifstream in(kRooms + "screen.json");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -210,9 +210,14 @@ TEST(CompareSceneChecks, ABarriersSideEdgesKeepItsExactModelAndRefuseAim) {
   const auto a = with->relativePressure(plain.sources[0].position_m, plain.listeners[0].position_m, {250.0, 1000.0});
   const auto b = without->relativePressure(plain.sources[0].position_m, plain.listeners[0].position_m, {250.0, 1000.0});
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]);
-  const std::string msg = errorOf([&] { dc::compareScene(sides, wbsdfOnly(true)); });
-  EXPECT_NE(msg.find("side edges"), std::string::npos) << msg;
-  EXPECT_EQ(errorOf([&] { dc::compareScene(sides, wbsdfOnly(false)); }), "");
+  EXPECT_EQ(errorOf([&] { dc::compareScene(sides, wbsdfOnly(true)); }), "");
+  // (6, 2, 0.5): the line from S (0, −2, 0.5) crosses y = 0 at x = 3, in side1's zone (x 2 to 4): reached;
+  // (10, 2, 0.5) crosses at x = 5, beyond every zone: refused.
+  dr::Room side = sides;
+  side.listeners = {dr::Listener{"side", Vec3(6, 2, 0.5), 0.15}};
+  EXPECT_EQ(errorOf([&] { dc::compareScene(side, wbsdfOnly(true)); }), "");
+  side.listeners = {dr::Listener{"far", Vec3(10, 2, 0.5), 0.15}};
+  EXPECT_NE(errorOf([&] { dc::compareScene(side, wbsdfOnly(true)); }).find("listener far"), std::string::npos);
 }
 
 TEST(CompareSceneChecks, WrapDegreesIntoTheHalfOpenCircle) {

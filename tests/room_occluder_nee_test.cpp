@@ -157,10 +157,11 @@ TEST(StatOccluderNextEvent, BarrierOnAGroundPlainEstimatedAndAimedAgree) {
     EXPECT_LT(aimed.listeners[l][0].ratio_std_error, uniform.listeners[l][0].ratio_std_error) << "listener " << l;
 }
 
-TEST(StatOccluderNextEvent, BarrierSideEdgesPlainAndEstimatedAgree) {
+TEST(StatOccluderNextEvent, BarrierSideEdgesPlainEstimatedAndAimedAgree) {
   // rooms/screen.json with "side_edges": the top edge's zone and one beside each side edge, all on the
   // rigid ground. Two wide spheres clear of the panel and the ground, one behind the middle and one past the
-  // side edge at x = 2; uniform emission with and without next-event estimation must agree.
+  // side edge at x = 2; uniform emission with and without next-event estimation, and rays aimed at the three
+  // zones and their images below the ground, must agree.
   nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(DIFFRAY_SOURCE_DIR) + "/rooms/screen.json"));
   scene["occluders"][0]["side_edges"] = true;
   diffray::test::TempDir dir("nee_sides");
@@ -177,4 +178,19 @@ TEST(StatOccluderNextEvent, BarrierSideEdgesPlainAndEstimatedAgree) {
   w.seed = 5;
   const auto plain = diffray::compare::wbsdfLevels(room, 0, w);
   expectSameMeans(room, estimated, plain);
+  const diffray::compare::AimGround ground = diffray::compare::checkAimReflectors(room);
+  ASSERT_TRUE(ground.present);
+  diffray::compare::aimAtOccluder(w, room.occluders[0]);
+  w.aim_mirrored = true;
+  w.aim_mirror_normal = ground.normal;
+  w.aim_mirror_offset = ground.offset;
+  for (std::size_t k = 1; k < room.occluders.size(); ++k) {
+    const dr::Occluder& z = room.occluders[k];
+    w.aim_more.push_back({z.origin_m, z.ex, z.ey, z.half_x_m, z.half_y_m});
+  }
+  w.next_event = true;
+  w.rays = 300000;
+  w.seed = 7;
+  const auto aimed = diffray::compare::wbsdfLevels(room, 0, w);
+  expectSameMeans(room, estimated, aimed);
 }

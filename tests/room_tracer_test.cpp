@@ -146,8 +146,8 @@ TEST(RoomTracer, AimedEmissionWeightsIntegrateToTheRectanglesSolidAngle) {
 
 // Aimed through a ground (EmissionTarget::mirrored): the weights integrate to the solid angles of the
 // rectangle and of its mirror image in the ground, over 4π, and every ray meets the rectangle's plane inside
-// one of the two. Oracle: the same corner formula for each rectangle; the grid's cell edges include ξ2 = ½,
-// where the sampling switches target.
+// one of the two; then with a second rectangle (EmissionTarget::also). Oracle: the same corner formula for
+// each rectangle; the grid's cell edges include the ξ2 where the sampling switches target (¼, ½, ¾).
 TEST(RoomTracer, AimedThroughAGroundWeightsIntegrateToBothRectanglesSolidAngles) {
   dt::EmissionTarget aim = uprightTarget();
   aim.edge_fraction = 0.25;
@@ -184,6 +184,27 @@ TEST(RoomTracer, AimedThroughAGroundWeightsIntegrateToBothRectanglesSolidAngles)
     }
   EXPECT_EQ(to_image, n_grid * n_grid / 2);
   EXPECT_NEAR(sum / (static_cast<double>(n_grid) * n_grid), omega / (4.0 * diffray::core::kPi), 1e-5 * omega);
+  // With a second rectangle beside it in the same plane (EmissionTarget::also, 0.8 m further along ex, so
+  // that the two and their images do not overlap): half the rays each, weights integrating to all four
+  // solid angles.
+  dt::EmissionTarget beside = aim;
+  beside.origin = aim.origin + 1.6 * aim.ex;
+  aim.also = {beside};
+  const Vec3 beside_image = image_origin + 1.6 * aim.ex;
+  const double omega2 = omega + solidAngle(beside.origin) + solidAngle(beside_image);
+  sum = 0.0;
+  for (int i = 0; i < n_grid; ++i)
+    for (int j = 0; j < n_grid; ++j) {
+      double scale = 0.0;
+      const Vec3 d = dt::emissionDirection(&aim, source, (i + 0.5) / n_grid, (j + 0.5) / n_grid, scale);
+      const Vec3 hit = source + (-(source - aim.origin).dot(n) / d.dot(n)) * d;
+      const bool second = (hit - aim.origin).dot(aim.ex) > aim.half_x_m;
+      EXPECT_EQ(second, j >= n_grid / 2);
+      const Vec3 local = hit - (second ? beside.origin : aim.origin);
+      ASSERT_LE(std::abs(local.dot(aim.ex)), aim.half_x_m * (1 + 1e-9));
+      sum += scale;
+    }
+  EXPECT_NEAR(sum / (static_cast<double>(n_grid) * n_grid), omega2 / (4.0 * diffray::core::kPi), 1e-5 * omega2);
 }
 
 // The eight-band bounce loop (Octaves: floats relative to the emitted level) against the general one

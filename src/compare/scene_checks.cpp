@@ -184,25 +184,29 @@ bool segmentBlocked(const std::vector<Tri>& solid, const Vec3& p, const Vec3& q)
   return false;
 }
 
-// Where the segment p→q crosses the aim rectangle's plane: 0 none, 1 inside the rectangle, −1 outside.
-int throughAim(const AimRect& aim, const Vec3& p, const Vec3& q) {
-  const Vec3 n = aim.ex.cross(aim.ey).normalized();
-  const double dp = (p - aim.origin).dot(n), dq = (q - aim.origin).dot(n);
-  if (!(dp * dq < 0.0)) return 0;
-  const Vec3 x = p + dp / (dp - dq) * (q - p) - aim.origin;
-  return std::abs(x.dot(aim.ex)) <= aim.half_x_m && std::abs(x.dot(aim.ey)) <= aim.half_y_m ? 1 : -1;
+// Whether the segment p→q crosses one of the aim rectangles (an end on one counts: a ground reflection
+// at the foot of a zone standing on the ground).
+bool throughAim(const std::vector<AimRect>& aims, const Vec3& p, const Vec3& q) {
+  for (const AimRect& aim : aims) {
+    const Vec3 n = aim.ex.cross(aim.ey).normalized();
+    const double dp = (p - aim.origin).dot(n), dq = (q - aim.origin).dot(n);
+    if (!(dp * dq <= 0.0) || dp == dq) continue;
+    const Vec3 x = p + dp / (dp - dq) * (q - p) - aim.origin;
+    if (std::abs(x.dot(aim.ex)) <= aim.half_x_m && std::abs(x.dot(aim.ey)) <= aim.half_y_m) return true;
+  }
+  return false;
 }
 
 }  // namespace
 
-void checkAimReachesListeners(const room::Room& room, const AimRect& aim, const AimGround& ground) {
+void checkAimReachesListeners(const room::Room& room, const std::vector<AimRect>& aims, const AimGround& ground) {
   if (room.sources.empty()) return;
   const room::Source& s = room.sources[0];
   const std::vector<Tri> solid = solidTriangles(room);
   const double tol = 1e-9 * sceneScale(room);
   for (const room::Listener& l : room.listeners) {
     const Vec3 p = s.position_m, q = l.position_m;
-    if (!segmentBlocked(solid, p, q) && throughAim(aim, p, q) != 1)
+    if (!segmentBlocked(solid, p, q) && !throughAim(aims, p, q))
       throw core::InputError("--aim", where(l) + " sees source " + s.name +
                                           " directly along a line that misses the occluder's aim rectangle, so no "
                                           "aimed ray reaches it; run without --aim (or move it)");
@@ -221,7 +225,7 @@ void checkAimReachesListeners(const room::Room& room, const AimRect& aim, const 
       (in_ground ? on_ground : on_other) |= near;
     }
     if (!on_ground || on_other || segmentBlocked(solid, p, r) || segmentBlocked(solid, r, q)) continue;
-    if (throughAim(aim, p, r) != 1 && throughAim(aim, r, q) != 1)
+    if (!throughAim(aims, p, r) && !throughAim(aims, r, q))
       throw core::InputError("--aim", where(l) + " hears source " + s.name +
                                           " by a reflection off the ground that misses the occluder's aim "
                                           "rectangle, so no aimed ray takes it; run without --aim (or move it)");
@@ -241,12 +245,11 @@ AimGround checkAimReflectors(const room::Room& room) {
   double size = 1.0;  // the mesh's largest coordinate, for a plane tolerance in its float rounding's units
   for (const Vec3& v : m.vertices) size = std::max(size, v.cwiseAbs().maxCoeff());
   const double tol = 1e-6 * size;
-  // A ground is possible under one edge or barrier (an edge axis across a uniform one).
+  // A ground is possible under one edge or barrier (an edge axis across a uniform one), side zones and all.
   using Kind = room::OccluderAxis::Kind;
-  const room::Occluder* edge = room.occluders.size() == 1 && room.occluders[0].x.kind == Kind::Edge &&
-                                       room.occluders[0].y.kind == Kind::Uniform
-                                   ? &room.occluders[0]
-                                   : nullptr;
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);
+  const room::Occluder* edge =
+      own.size() == 1 && own[0]->x.kind == Kind::Edge && own[0]->y.kind == Kind::Uniform ? own[0] : nullptr;
   AimGround ground;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const std::string& g = t < room.group_of_triangle.size() ? room.group_of_triangle[t] : std::string();
@@ -274,8 +277,9 @@ AimGround checkAimReflectors(const room::Room& room) {
       const bool in_ground = ground.present && std::abs(std::abs(u.dot(ground.normal)) - 1.0) < 1e-9 &&
                              std::abs(u.dot(ground.normal) * offset - ground.offset) < tol;
       double lo = 1e300, hi = -1e300;
-      for (const Vec3& c : room::occluderCorners(*edge))
-        lo = std::min(lo, u.dot(c) - offset), hi = std::max(hi, u.dot(c) - offset);
+      for (const room::Occluder& zone : room.occluders)  // the edge's zone and a barrier's side zones
+        for (const Vec3& c : room::occluderCorners(zone))
+          lo = std::min(lo, u.dot(c) - offset), hi = std::max(hi, u.dot(c) - offset);
       const bool cuts = lo < -tol && hi > tol;
       if (in_ground || (!ground.present && std::abs(u.dot(edge->normal)) < 1e-9 && !cuts)) {
         if (diffuse)

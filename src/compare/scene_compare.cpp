@@ -155,12 +155,10 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
     w.on_progress = o.on_progress;
     if (room.occluders.empty()) out.warnings.push_back("the scene has no occluders: the WBSDF model is plain geometric acoustics");
     if (o.aim) {
-      if (room::ownOccluders(room).size() != room.occluders.size())
-        throw core::InputError("--aim", "aims at one edge zone, and the barrier's side edges (side_edges) have zones of "
-                                        "their own; run without --aim");
-      if (room.occluders.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
+      const std::vector<const room::Occluder*> own = room::ownOccluders(room);
+      if (own.size() != 1) throw core::InputError("--aim", "needs exactly one occluder in the scene");
       const AimGround ground = checkAimReflectors(room);
-      const room::Occluder& d = room.occluders[0];
+      const room::Occluder& d = *own[0];
       aimAtOccluder(w, d);
       if (d.y.kind == Kind::Uniform) {
         // Along an edge the ray keeps its cosine: a path from the source to a listener crosses the zone at an
@@ -179,7 +177,13 @@ SceneComparison compareScene(const room::Room& room, const CompareOptions& o) {
           w.aim_half_y_m = 0.5 * (hi - lo);
         }
       }
-      checkAimReachesListeners(room, {w.aim_origin, w.aim_ex, w.aim_ey, w.aim_half_x_m, w.aim_half_y_m}, ground);
+      std::vector<AimRect> rects = {{w.aim_origin, w.aim_ex, w.aim_ey, w.aim_half_x_m, w.aim_half_y_m}};
+      for (const room::Occluder& side : room.occluders)  // a barrier's side zones, whole
+        if (&side != &d) {
+          w.aim_more.push_back({side.origin_m, side.ex, side.ey, side.half_x_m, side.half_y_m});
+          rects.push_back({side.origin_m, side.ex, side.ey, side.half_x_m, side.half_y_m});
+        }
+      checkAimReachesListeners(room, rects, ground);
       w.aim_mirrored = ground.present;
       w.aim_mirror_normal = ground.normal;
       w.aim_mirror_offset = ground.offset;

@@ -43,7 +43,12 @@ WbsdfLevels wbsdfLevels(const room::Room& room, int source, const WbsdfRunOption
   if (options.diffraction && !occluders.empty()) opt.occluders = &occluders;
   transport::EmissionTarget aim{options.aim_origin, options.aim_ex, options.aim_ey, options.aim_half_x_m,
                                 options.aim_half_y_m, options.aim_edge_fraction, options.aim_edge_scale_m,
-                                options.aim_mirrored, options.aim_mirror_normal, options.aim_mirror_offset};
+                                options.aim_mirrored, options.aim_mirror_normal, options.aim_mirror_offset, {}};
+  for (const WbsdfRunOptions::AimZone& z : options.aim_more) {
+    transport::EmissionTarget more = aim;
+    more.origin = z.origin, more.ex = z.ex, more.ey = z.ey, more.half_x_m = z.half_x_m, more.half_y_m = z.half_y_m;
+    aim.also.push_back(more);
+  }
   if (options.aim) opt.aim = &aim;
   const transport::RoomTraceResult r = transport::traceRoom(room, geometry, source, opt);
 

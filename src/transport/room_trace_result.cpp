@@ -56,15 +56,10 @@ double directivityGain(const room::Directivity& d, double cos_theta) {
   return amp * amp / (d.a * d.a + (1.0 - d.a) * (1.0 - d.a) / 3.0);
 }
 
-core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source, double xi1, double xi2,
-                             double& scale) {
-  scale = 1.0;
-  if (!aim) {
-    const double z = 1.0 - 2.0 * xi1, phi = core::kTwoPi * xi2;
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    return core::Vec3(r * std::cos(phi), r * std::sin(phi), z);
-  }
-  const EmissionTarget& t = *aim;
+namespace {
+
+// One rectangle of an aimed emission (its `also` list aside), with its mirror image if `mirrored`.
+core::Vec3 towardRectangle(const EmissionTarget& t, const core::Vec3& source, double xi1, double xi2, double& scale) {
   const bool image = t.mirrored && xi2 >= 0.5;
   if (t.mirrored) xi2 = image ? 2.0 * xi2 - 1.0 : 2.0 * xi2;
   // d: distance from the −x side; uniform, or with probability edge_fraction log-uniform in d + d0.
@@ -82,7 +77,28 @@ core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source
   const double cos_t = std::abs(dir.dot(t.ex.cross(t.ey)));
   // 1/(4π·pdf per steradian), pdf = pdf_x·pdf_y·r²/cosθ with pdf_y = 1/(2·half_y).
   scale = cos_t * 2.0 * t.half_y_m / (pdf_x * 4.0 * core::kPi * dist2);
-  if (t.mirrored) scale *= 2.0;  // each target takes half the rays
+  if (t.mirrored) scale *= 2.0;  // each of the rectangle and its image takes half the rays
+  return dir;
+}
+
+}  // namespace
+
+core::Vec3 emissionDirection(const EmissionTarget* aim, const core::Vec3& source, double xi1, double xi2,
+                             double& scale) {
+  scale = 1.0;
+  if (!aim) {
+    const double z = 1.0 - 2.0 * xi1, phi = core::kTwoPi * xi2;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    return core::Vec3(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  if (aim->also.empty()) return towardRectangle(*aim, source, xi1, xi2, scale);
+  // Several rectangles: an equal share of the rays each, xi2's slot picking one (then rescaled within it).
+  const std::size_t count = 1 + aim->also.size();
+  const double x = xi2 * static_cast<double>(count);
+  const std::size_t k = std::min(count - 1, static_cast<std::size_t>(x));
+  const core::Vec3 dir = towardRectangle(k == 0 ? *aim : aim->also[k - 1], source, xi1,
+                                         std::min(1.0, x - static_cast<double>(k)), scale);
+  scale *= static_cast<double>(count);
   return dir;
 }
 

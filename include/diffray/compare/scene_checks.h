@@ -38,10 +38,10 @@ struct AimGround {
 };
 
 /// `--aim`: throws core::InputError naming the first listener that an unblocked path from source 0 reaches
-/// (the occluders' own rectangles aside) without passing through `aim`: the straight line, and with a
-/// `ground` the path reflected once off it. No aimed ray takes such a path, so the listener's WBSDF level
+/// (the occluders' own rectangles aside) without passing through one of `aims`: the straight line, and with
+/// a `ground` the path reflected once off it. No aimed ray takes such a path, so the listener's WBSDF level
 /// would lack it.
-void checkAimReachesListeners(const room::Room& room, const AimRect& aim, const AimGround& ground = {});
+void checkAimReachesListeners(const room::Room& room, const std::vector<AimRect>& aims, const AimGround& ground = {});
 
 /// `--aim`: throws core::InputError naming the first reflecting surface (a material that does not absorb
 /// everything in every band) outside the occluders' own groups that the aimed rays cannot take into

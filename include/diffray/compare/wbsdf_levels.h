@@ -35,6 +35,13 @@ struct WbsdfRunOptions {
   bool aim_mirrored = false;
   core::Vec3 aim_mirror_normal{0, 0, 1};
   double aim_mirror_offset = 0.0;
+  /// More rectangles sharing the rays equally with the first (transport::EmissionTarget::also), each with
+  /// the same edge sampling and ground image: a barrier's side zones.
+  struct AimZone {
+    core::Vec3 origin{0, 0, 0}, ex{1, 0, 0}, ey{0, 1, 0};
+    double half_x_m = 0.0, half_y_m = 0.0;
+  };
+  std::vector<AimZone> aim_more;
 };
 
 struct WbsdfLevels {

@@ -37,7 +37,9 @@ namespace diffray::transport {
 /// mirror_normal·p = mirror_offset (a specular ground perpendicular to the rectangle, not cutting it): rays
 /// toward the image reflect off the ground and reach the rectangle (the image source's paths). The rectangle
 /// and its image lie in one plane without overlapping, so a direction reaches at most one of them and its
-/// pdf is half that target's.
+/// pdf is half that target's. With `also`, the rays are shared equally between this rectangle and those
+/// (each with its own image if mirrored; their `also` unused): rectangles that must not overlap, nor their
+/// images, so that each direction reaches one of them and its pdf is that one's over their count.
 struct EmissionTarget {
   core::Vec3 origin{0, 0, 0}, ex{1, 0, 0}, ey{0, 1, 0};
   double half_x_m = 1.0, half_y_m = 1.0;
@@ -46,6 +48,7 @@ struct EmissionTarget {
   bool mirrored = false;
   core::Vec3 mirror_normal{0, 0, 1};
   double mirror_offset = 0.0;
+  std::vector<EmissionTarget> also;
 };
 
 /// The direction of an emitted ray from two uniforms in [0, 1) (xi1 the first): uniform over the sphere
