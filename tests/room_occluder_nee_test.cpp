@@ -51,6 +51,22 @@ void expectSameMeans(const dr::Room& room, const diffray::compare::WbsdfLevels& 
     }
 }
 
+// Aims w's rays at the room's first occluder, its other zones (a barrier's side zones, whole) and their
+// images below the specular ground (as compare --aim does); false when the room has no such ground.
+bool aimThroughTheGround(const dr::Room& room, diffray::compare::WbsdfRunOptions& w) {
+  const diffray::compare::AimGround ground = diffray::compare::checkAimReflectors(room);
+  if (!ground.present) return false;
+  diffray::compare::aimAtOccluder(w, room.occluders[0]);
+  w.aim_mirrored = true;
+  w.aim_mirror_normal = ground.normal;
+  w.aim_mirror_offset = ground.offset;
+  for (std::size_t k = 1; k < room.occluders.size(); ++k) {
+    const dr::Occluder& z = room.occluders[k];
+    w.aim_more.push_back({z.origin_m, z.ex, z.ey, z.half_x_m, z.half_y_m});
+  }
+  return true;
+}
+
 }  // namespace
 
 TEST(StatOccluderNextEvent, QuadratureMatchesSampledScatterings) {
@@ -137,12 +153,7 @@ TEST(StatOccluderNextEvent, BarrierOnAGroundPlainEstimatedAndAimedAgree) {
   w.rays = 1000000;
   w.seed = 3;
   const auto uniform = diffray::compare::wbsdfLevels(room, 0, w);
-  const diffray::compare::AimGround ground = diffray::compare::checkAimReflectors(room);
-  ASSERT_TRUE(ground.present);
-  diffray::compare::aimAtOccluder(w, room.occluders[0]);
-  w.aim_mirrored = true;
-  w.aim_mirror_normal = ground.normal;
-  w.aim_mirror_offset = ground.offset;
+  ASSERT_TRUE(aimThroughTheGround(room, w));
   w.rays = 200000;
   w.seed = 5;
   const auto aimed = diffray::compare::wbsdfLevels(room, 0, w);
@@ -178,16 +189,7 @@ TEST(StatOccluderNextEvent, BarrierSideEdgesPlainEstimatedAndAimedAgree) {
   w.seed = 5;
   const auto plain = diffray::compare::wbsdfLevels(room, 0, w);
   expectSameMeans(room, estimated, plain);
-  const diffray::compare::AimGround ground = diffray::compare::checkAimReflectors(room);
-  ASSERT_TRUE(ground.present);
-  diffray::compare::aimAtOccluder(w, room.occluders[0]);
-  w.aim_mirrored = true;
-  w.aim_mirror_normal = ground.normal;
-  w.aim_mirror_offset = ground.offset;
-  for (std::size_t k = 1; k < room.occluders.size(); ++k) {
-    const dr::Occluder& z = room.occluders[k];
-    w.aim_more.push_back({z.origin_m, z.ex, z.ey, z.half_x_m, z.half_y_m});
-  }
+  ASSERT_TRUE(aimThroughTheGround(room, w));
   w.next_event = true;
   w.rays = 300000;
   w.seed = 7;
