@@ -346,6 +346,21 @@ TEST(RoomOccluderFile, BarrierWithSideEdgesAddsAZoneBesideEach) {
   EXPECT_EQ(own[0], &room.occluders[0]);
   scene["occluders"][0]["side_edges"] = 1;
   EXPECT_THROW(parse(scene), diffray::core::InputError);
+  // "foot_edge": a 4 × 1 m zone below the foot (z in [−1, 0]), open toward −z, along the base.
+  scene["occluders"][0]["side_edges"] = false;
+  scene["occluders"][0]["foot_edge"] = true;
+  const dr::Room footed = parse(scene);
+  ASSERT_EQ(footed.occluders.size(), 2u);
+  const dr::Occluder& f = footed.occluders[1];
+  EXPECT_EQ(f.name, "b/foot");
+  EXPECT_EQ(f.type, "barrier side");
+  expectRightHandedFrame(f);
+  expectVec(f.ex, dr::Vec3(0, 0, -1), "ex away from the panel");
+  expectVec(f.ey, dr::Vec3(1, 0, 0), "ey along the foot");
+  expectVec(f.origin_m, dr::Vec3(4, 5, -0.5), "zone centre");
+  EXPECT_DOUBLE_EQ(f.half_x_m, 0.5);
+  EXPECT_DOUBLE_EQ(f.half_y_m, 2.0);
+  EXPECT_EQ(dr::ownOccluders(footed).size(), 1u);
 }
 
 TEST(RoomOccluderFile, GratingReflectsInItsMaterial) {

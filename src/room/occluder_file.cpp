@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include "diffray/core/error.h"
 
@@ -223,13 +224,15 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
       }
     } else if (type == "edge" || type == "barrier") {
       Occluder zone;
+      std::vector<Occluder> more;  // a barrier's other edges' zones ("foot_edge", "side_edges")
       std::string name = o.has("name") ? o["name"].string() : fallback;
       claimName(names, name, o);
       if (type == "edge") {
         o.allowKeys({"type", "name", "start", "end", "open_toward", "extent_m", "faces"});
         zone = edgeZoneOccluder(o["start"].vec3(), o["end"].vec3(), o["open_toward"].vec3(), edgeZone(o), o.where());
       } else {
-        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m", "faces", "side_edges"});
+        o.allowKeys({"type", "name", "base", "height_m", "up", "material", "extent_m", "faces", "side_edges",
+                     "foot_edge"});
         const JsonField base = o["base"];
         base.arraySize(2);
         const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
@@ -243,27 +246,27 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         room.addPolygon({p0, p1, p1 + h * up, p0 + h * up}, material, "barrier:" + name);
         zone = edgeZoneOccluder(p0 + h * up, p1 + h * up, up, edgeZone(o), o.where());
         zone.type = "barrier";
+        // Its foot (a barrier standing free) and its two sides, each with a zone of the same extent beside the
+        // edge in the panel's plane, open away from the panel (the corners' quarter-planes beyond two zones
+        // stay plain).
+        if (o.has("foot_edge") && o["foot_edge"].boolean()) {
+          more.push_back(edgeZoneOccluder(p0, p1, -up, edgeZone(o), o.where()));
+          more.back().name = name + "/foot";
+        }
+        if (o.has("side_edges") && o["side_edges"].boolean())
+          for (const auto& [at, other, tag] : {std::make_tuple(p0, p1, "/side0"), std::make_tuple(p1, p0, "/side1")}) {
+            more.push_back(edgeZoneOccluder(at, at + h * up, at - other, edgeZone(o), o.where()));
+            more.back().name = name + tag;
+          }
       }
       zone.x.faces = faces(o, OccluderAxis::Faces::Rigid);
       zone.name = name;
       addOccluderRect(room, zone);
-      if (type == "barrier" && o.has("side_edges") && o["side_edges"].boolean()) {
-        // The panel's two side edges, each with a zone of the same extent beside it in the panel's plane,
-        // open away from the panel (the corners' quarter-planes beyond both zones stay plain).
-        const JsonField base = o["base"];
-        const Vec3 p0 = base.at(0).vec3(), p1 = base.at(1).vec3();
-        const Vec3 up = o.has("up") ? unitVector(o["up"]) : Vec3(0, 0, 1);
-        const double h = o["height_m"].length();
-        const Vec3 ends[2][2] = {{p0, p1}, {p1, p0}};
-        const char* sides[2] = {"/side0", "/side1"};
-        for (int e = 0; e < 2; ++e) {
-          Occluder side = edgeZoneOccluder(ends[e][0], ends[e][0] + h * up, ends[e][0] - ends[e][1], edgeZone(o), o.where());
-          side.type = "barrier side";
-          side.x.faces = zone.x.faces;
-          side.name = name + sides[e];
-          claimName(names, side.name, o);
-          addOccluderRect(room, side);
-        }
+      for (Occluder& edge : more) {
+        edge.type = "barrier side";
+        edge.x.faces = zone.x.faces;
+        claimName(names, edge.name, o);
+        addOccluderRect(room, edge);
       }
     } else if (type == "grating") {
       o.allowKeys({"type", "name", "centre", "normal", "up", "width_m", "height_m", "period_m", "modulation_m",

@@ -23,8 +23,8 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
 /// Used by the parser and by code that builds scenes (validation cases).
 void addOccluderRect(Room& room, Occluder occ, int material = -1);
 
-/// The occluders that are objects of their own: all but the zones of a barrier's side edges ("side_edges":
-/// type "barrier side"), which belong to the barrier listed before them.
+/// The occluders that are objects of their own: all but the zones of a barrier's other edges ("foot_edge",
+/// "side_edges": type "barrier side"), which belong to the barrier listed before them.
 std::vector<const Occluder*> ownOccluders(const Room& room);
 
 /// The corners of the occluder's rectangle origin ± half_x·ex ± half_y·ey, in order (counter-clockwise seen
