@@ -12,6 +12,7 @@
 #include "diffray/ir/band_filter.h"
 #include "diffray/spatial/hrtf.h"
 #include "diffray/spatial/spherical_harmonics.h"
+#include "band_refilter.h"
 #include "synthesis_plan.h"
 
 namespace diffray::ir {
@@ -111,6 +112,7 @@ std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, c
   for (std::size_t q = 0; q < at.size(); ++q) pick[q] = rng.uniform(), diffuse[q] = uniformDirection(rng);
   const std::size_t nbands = std::min(static_cast<std::size_t>(response.bands.size()), plan.gains.size());
   std::vector<std::vector<std::vector<std::complex<double>>>> parts(nbands);  // [band][output][band bin]
+  const std::vector<std::complex<double>> window = detail::truncationWindowSpectrum(plan.fft_size, plan.samples);
   tbb::parallel_for(std::size_t{0}, nbands, [&](std::size_t band) {
     const BandGains& bg = gains[band];
     RealFft fft(plan.fft_size);
@@ -168,10 +170,15 @@ std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, c
     }
     std::vector<std::vector<double>> sequences(outputs, std::vector<double>(n, 0.0));
     render(d, sequences);
-    parts[band].resize(outputs);
+    // Each output's band spectrum, made a band part as W's was (back to the response's length, forward
+    // again) on the band's bins alone (band_refilter.h: the same spectrum to rounding).
+    detail::BandRefilter refilter(window, fft.size(), bg.first, static_cast<int>(bg.w.size()));
+    std::vector<std::complex<double>> s(bg.w.size());
+    parts[band].assign(outputs, std::vector<std::complex<double>>(bg.w.size()));
     for (std::size_t o = 0; o < outputs; ++o) {
-      fft.forward(bandPart(sequences[o]), spectrum);
-      parts[band][o].assign(spectrum.begin() + bg.first, spectrum.begin() + bg.first + static_cast<long>(bg.w.size()));
+      fft.forward(sequences[o], spectrum);
+      for (std::size_t j = 0; j < bg.w.size(); ++j) s[j] = bg.w[j] * spectrum[static_cast<std::size_t>(bg.first) + j];
+      refilter.apply(s.data(), parts[band][o].data());
     }
   });
   RealFft fft(plan.fft_size);
