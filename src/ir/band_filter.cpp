@@ -56,14 +56,29 @@ void RealFft::forward(const std::vector<double>& x, std::vector<std::complex<dou
   spectrum.assign(c, c + bins());
 }
 
+void RealFft::forwardBins(const double* x, std::size_t size, int first, int count, std::complex<double>* out) {
+  DIFFRAY_CHECK(first >= 0 && count >= 0 && first + count <= bins());
+  const size_t n = std::min(size, static_cast<size_t>(n_));
+  std::copy(x, x + n, real_);
+  std::fill(real_ + n, real_ + n_, 0.0);
+  fftw_execute(static_cast<fftw_plan>(forward_plan_));
+  const auto* c = reinterpret_cast<const std::complex<double>*>(complex_);  // layout-compatible
+  std::copy(c + first, c + first + count, out);
+}
+
 std::vector<double> RealFft::inverse(const std::vector<std::complex<double>>& spectrum, long count) {
+  std::vector<double> out;
+  inverse(spectrum, count, out);
+  return out;
+}
+
+void RealFft::inverse(const std::vector<std::complex<double>>& spectrum, long count, std::vector<double>& out) {
   DIFFRAY_CHECK(static_cast<int>(spectrum.size()) == bins() && count >= 0 && count <= n_);
   std::copy(spectrum.begin(), spectrum.end(), reinterpret_cast<std::complex<double>*>(complex_));
   fftw_execute(static_cast<fftw_plan>(inverse_plan_));  // c2r overwrites its input: hence the copy
-  std::vector<double> out(real_, real_ + count);
+  out.assign(real_, real_ + count);
   const double scale = 1.0 / n_;
   for (double& v : out) v *= scale;
-  return out;
 }
 
 int fastFftLength(long n) {
