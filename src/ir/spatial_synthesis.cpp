@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
 #include "diffray/core/rng.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/spatial/hrtf.h"
@@ -216,31 +217,36 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
   out[0] = detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
                                      Phasing::Orthogonal, &plan);
   const BandFilter filter(response.bands, sample_rate_hz);
-  RealFft fft(plan.fft_size);
-  const int m = fft.size(), nb = response.bands.size();
+  const int m = plan.fft_size, nb = response.bands.size();
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
-  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}).
-  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));  // [channel − 1][bin]
-  std::vector<double> y(channels);
-  for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
-    const Arrival& arrival = response.arrivals[a];
-    if (!(arrival.direction.norm() > 0.0)) continue;
-    spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
-    const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
-    const std::complex<double> step = std::polar(1.0, phase_step);
-    for (int b = 0; b < nb; ++b) {
-      const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
-      if (c == std::complex<double>(0.0, 0.0)) continue;
-      const BandGains& g = gains[static_cast<std::size_t>(b)];
-      std::complex<double> z = std::polar(1.0, phase_step * g.first);
-      for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) {
-        const std::complex<double> pulse = c * g.w[j] * z;
-        for (std::size_t ch = 1; ch < channels; ++ch) arrivals[ch - 1][static_cast<std::size_t>(g.first) + j] += y[ch] * pulse;
+  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}). The channels
+  // in one contiguous block per thread, each block summing its channels in arrival order as one thread
+  // would: the same spectra for any thread count.
+  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));  // [channel − 1][bin]
+  const std::size_t blocks = std::min(channels - 1, static_cast<std::size_t>(std::max(1, core::ThreadLimit::current())));
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+    const std::size_t ch_begin = 1 + block * (channels - 1) / blocks, ch_end = 1 + (block + 1) * (channels - 1) / blocks;
+    std::vector<double> y(channels);
+    for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
+      const Arrival& arrival = response.arrivals[a];
+      if (!(arrival.direction.norm() > 0.0)) continue;
+      spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
+      const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
+      const std::complex<double> step = std::polar(1.0, phase_step);
+      for (int b = 0; b < nb; ++b) {
+        const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+        if (c == std::complex<double>(0.0, 0.0)) continue;
+        const BandGains& g = gains[static_cast<std::size_t>(b)];
+        std::complex<double> z = std::polar(1.0, phase_step * g.first);
+        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) {
+          const std::complex<double> pulse = c * g.w[j] * z;
+          for (std::size_t ch = ch_begin; ch < ch_end; ++ch) arrivals[ch - 1][static_cast<std::size_t>(g.first) + j] += y[ch] * pulse;
+        }
       }
     }
-  }
+  });
   std::vector<std::vector<double>> rest =
       tracedOutputs(response, plan, gains, seed, local, arrivals, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
         std::vector<double> ys(channels);
@@ -266,8 +272,7 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
       detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing, &plan);
   if (omni) *omni = std::move(w_channel);
   const BandFilter filter(response.bands, sample_rate_hz);
-  RealFft fft(plan.fft_size);
-  const int m = fft.size(), nb = response.bands.size();
+  const int m = plan.fft_size, nb = response.bands.size();
   const std::size_t n = static_cast<std::size_t>(plan.samples), taps = static_cast<std::size_t>(hrtf.taps());
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
@@ -280,9 +285,8 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   };
   // Arrivals: each band's pulse c·W_b·e^{−2πifτ} through the HRIR of the arrival's direction, at the sample
   // nearest its delay: per band and ear, the HRIRs placed with weights Re(c) and Im(c) in two sequences X_R,
-  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}).
-  std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
-  std::vector<std::complex<double>> spectrum_r, spectrum_i;
+  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}). The bands in
+  // parallel (each thread with its FFT and two sequences, zeroed again after use), added in band order.
   // Each arrival's HRIR pair and sample, once (−1: beyond the response).
   const std::size_t arrivals = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
   std::vector<int> measured(arrivals, 0);
@@ -293,28 +297,45 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
     const long s = std::lround(arrival.delay_s * sample_rate_hz);
     if (s >= 0 && static_cast<std::size_t>(s) < n) sample[a] = s;
   }
-  for (int b = 0; b < nb; ++b) {
+  struct Workspace {
+    RealFft fft;
+    std::vector<double> xr, xi;
+    Workspace(int size, std::size_t samples) : fft(size), xr(samples, 0.0), xi(samples, 0.0) {}
+  };
+  tbb::enumerable_thread_specific<Workspace> workspaces(m, n);
+  std::vector<std::vector<std::vector<std::complex<double>>>> band_ears(static_cast<std::size_t>(nb));  // [band][side][band bin]
+  tbb::parallel_for(0, nb, [&](int b) {
+    Workspace& ws = workspaces.local();
+    const BandGains& g = gains[static_cast<std::size_t>(b)];
+    const int len = static_cast<int>(g.w.size());
+    std::vector<std::complex<double>> spectrum_r(g.w.size()), spectrum_i(g.w.size());
+    band_ears[static_cast<std::size_t>(b)].resize(2);
     for (int side = 0; side < 2; ++side) {
-      std::vector<double> xr(n, 0.0), xi(n, 0.0);
       bool any = false;
       for (std::size_t a = 0; a < arrivals; ++a) {
         const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
         if (c == std::complex<double>(0.0, 0.0) || sample[a] < 0) continue;
         const float* h = hrtf.ear(measured[a], side);
-        place(xr, sample[a], h, c.real());
-        place(xi, sample[a], h, c.imag());
+        place(ws.xr, sample[a], h, c.real());
+        place(ws.xi, sample[a], h, c.imag());
         any = true;
       }
       if (!any) continue;
-      fft.forward(xr, spectrum_r);
-      fft.forward(xi, spectrum_i);
-      const BandGains& g = gains[static_cast<std::size_t>(b)];
-      for (std::size_t j = 0; j < g.w.size(); ++j) {
-        const std::size_t k = static_cast<std::size_t>(g.first) + j;
-        ears[static_cast<std::size_t>(side)][k] += g.w[j] * (spectrum_r[k] + std::complex<double>(0.0, 1.0) * spectrum_i[k]);
-      }
+      ws.fft.forwardBins(ws.xr.data(), n, g.first, len, spectrum_r.data());
+      ws.fft.forwardBins(ws.xi.data(), n, g.first, len, spectrum_i.data());
+      std::fill(ws.xr.begin(), ws.xr.end(), 0.0);
+      std::fill(ws.xi.begin(), ws.xi.end(), 0.0);
+      auto& part = band_ears[static_cast<std::size_t>(b)][static_cast<std::size_t>(side)];
+      part.resize(g.w.size());
+      for (std::size_t j = 0; j < g.w.size(); ++j) part[j] = g.w[j] * (spectrum_r[j] + std::complex<double>(0.0, 1.0) * spectrum_i[j]);
     }
-  }
+  });
+  std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));
+  for (int b = 0; b < nb; ++b)
+    for (std::size_t side = 0; side < 2; ++side) {
+      const auto& part = band_ears[static_cast<std::size_t>(b)][side];
+      for (std::size_t j = 0; j < part.size(); ++j) ears[side][static_cast<std::size_t>(gains[static_cast<std::size_t>(b)].first) + j] += part[j];
+    }
   return tracedOutputs(response, plan, gains, seed, local, ears, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
     for (std::size_t q = 0; q < d.at.size(); ++q) {
       const int i = hrtf.nearest(d.dir[q]);
