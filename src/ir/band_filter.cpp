@@ -6,6 +6,9 @@
 #include <cmath>
 #include <mutex>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "diffray/core/error.h"
 #include "diffray/core/fftw_planner.h"
 #include "diffray/core/math.h"
@@ -162,16 +165,24 @@ BandGains BandFilter::gains(int band, int fft_length) const {
 
 std::vector<std::vector<double>> BandFilter::split(const std::vector<double>& x) const {
   const int m = fftLengthFor(static_cast<long>(x.size()));
-  RealFft fft(m);
-  std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<size_t>(fft.bins()));
-  fft.forward(x, spectrum);
-  std::vector<std::vector<double>> out;
-  for (int b = 0; b < bands_.size(); ++b) {
+  std::vector<std::complex<double>> spectrum;
+  RealFft(m).forward(x, spectrum);
+  // Per thread: an FFT and a band spectrum, zero but on the band last written (cleared after use).
+  struct Work {
+    RealFft fft;
+    std::vector<std::complex<double>> band_spectrum;
+    explicit Work(int size) : fft(size), band_spectrum(static_cast<size_t>(size / 2 + 1)) {}
+  };
+  tbb::enumerable_thread_specific<Work> works(m);
+  std::vector<std::vector<double>> out(static_cast<size_t>(bands_.size()));
+  tbb::parallel_for(0, bands_.size(), [&](int b) {
+    Work& work = works.local();
     const BandGains g = gains(b, m);
-    std::fill(band_spectrum.begin(), band_spectrum.end(), std::complex<double>(0.0, 0.0));
-    for (size_t i = 0; i < g.w.size(); ++i) band_spectrum[g.first + i] = g.w[i] * spectrum[g.first + i];
-    out.push_back(fft.inverse(band_spectrum, static_cast<long>(x.size())));
-  }
+    for (size_t i = 0; i < g.w.size(); ++i) work.band_spectrum[g.first + i] = g.w[i] * spectrum[g.first + i];
+    work.fft.inverse(work.band_spectrum, static_cast<long>(x.size()), out[static_cast<size_t>(b)]);
+    std::fill(work.band_spectrum.begin() + g.first, work.band_spectrum.begin() + g.first + static_cast<long>(g.w.size()),
+              std::complex<double>(0.0, 0.0));
+  });
   return out;
 }
 

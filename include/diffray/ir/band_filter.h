@@ -93,7 +93,7 @@ class BandFilter {
   long ringSamples(int band) const;
   BandGains gains(int band, int fft_length) const;
 
-  /// Every band of x: out[b] has x's length.
+  /// Every band of x: out[b] has x's length. The bands go back to time in parallel (TBB), each alone.
   std::vector<std::vector<double>> split(const std::vector<double>& x) const;
 
  private:
