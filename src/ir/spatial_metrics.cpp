@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "diffray/core/error.h"
@@ -112,15 +113,15 @@ std::vector<SpatialBandMetrics> interauralCrossCorrelation(const std::vector<dou
   const BandPair p = splitPair(left, right, sample_rate_hz, bands, true, "binaural response");
   std::vector<SpatialBandMetrics> out(static_cast<std::size_t>(bands.size()));
   const long n80 = p.onset + samples(0.080, p.fs), max_lag = samples(0.001, p.fs);
-  for (int b = 0; b < bands.size(); ++b) {
+  tbb::parallel_for(0, bands.size(), [&](int b) {  // each band alone
     const auto& pl = p.a[static_cast<std::size_t>(b)];
     const auto& pr = p.b[static_cast<std::size_t>(b)];
     const long end = static_cast<long>(pl.size());
-    if (!p.measurable[static_cast<std::size_t>(b)] || n80 > end) continue;
+    if (!p.measurable[static_cast<std::size_t>(b)] || n80 > end) return;
     out[static_cast<std::size_t>(b)].iacc_e = iacc(pl, pr, p.start[static_cast<std::size_t>(b)], n80, max_lag);
     const long late_end = std::min(end, p.onset + samples(0.750, p.fs));
     if (late_end - n80 >= samples(0.010, p.fs)) out[static_cast<std::size_t>(b)].iacc_l = iacc(pl, pr, n80, late_end, max_lag);
-  }
+  });
   return out;
 }
 

@@ -229,6 +229,7 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
     const std::size_t ch_begin = 1 + block * (channels - 1) / blocks, ch_end = 1 + (block + 1) * (channels - 1) / blocks;
     std::vector<double> y(channels);
+    std::vector<std::complex<double>> pulse;  // the arrival's pulse on one band's bins
     for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
       const Arrival& arrival = response.arrivals[a];
       if (!(arrival.direction.norm() > 0.0)) continue;
@@ -239,10 +240,12 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
         const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
         if (c == std::complex<double>(0.0, 0.0)) continue;
         const BandGains& g = gains[static_cast<std::size_t>(b)];
+        pulse.resize(g.w.size());
         std::complex<double> z = std::polar(1.0, phase_step * g.first);
-        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) {
-          const std::complex<double> pulse = c * g.w[j] * z;
-          for (std::size_t ch = ch_begin; ch < ch_end; ++ch) arrivals[ch - 1][static_cast<std::size_t>(g.first) + j] += y[ch] * pulse;
+        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) pulse[j] = c * g.w[j] * z;
+        for (std::size_t ch = ch_begin; ch < ch_end; ++ch) {
+          std::complex<double>* to = arrivals[ch - 1].data() + g.first;
+          for (std::size_t j = 0; j < g.w.size(); ++j) to[j] += y[ch] * pulse[j];
         }
       }
     }
