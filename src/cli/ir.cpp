@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "diffray/audio/wav.h"
 #include "diffray/cli/commands.h"
 #include "diffray/cli/plot.h"
@@ -266,36 +268,51 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
     buffer.sample_rate_hz = room.output.sample_rate_hz;
     buffer.channels = static_cast<int>(room.listeners.size());
     nlohmann::ordered_json listeners = nlohmann::ordered_json::array();
-    std::vector<std::vector<double>> channels;
-    std::vector<std::vector<std::vector<double>>> spatial_irs;  // [listener][channel]: AmbiX (ACN) or left, right
     std::string table;
     std::vector<std::string> metric_warnings;  // noisy or negative bands, one per listener and band
     std::vector<std::vector<std::string>> plot_flags;  // [listener][band]: the histogram's flags
     std::vector<std::vector<double>> traced_t30;       // [listener][band], from the histograms
     double total_power_w = 0.0;
     for (const room::Source& s : room.sources) total_power_w += s.power_w;
-    for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+    // Each listener's IRs (omni, and the spatial one), its WAV's metrics and its spatial figures, the listeners
+    // in parallel: each from its own seed, so the same samples and figures as one after the other.
+    const std::size_t listener_count = room.listeners.size();
+    std::vector<std::vector<double>> channels(listener_count);
+    std::vector<std::vector<std::vector<double>>> spatial_irs(ambix || binaural ? listener_count : 0);  // [listener][channel]: AmbiX (ACN) or left, right
+    std::vector<std::vector<ir::BandMetrics>> wav_metrics(listener_count);
+    std::vector<std::vector<ir::SpatialBandMetrics>> spatial_metrics(listener_count);
+    tbb::parallel_for(std::size_t{0}, listener_count, [&](std::size_t l) {
       const auto& resp = sim.listeners[l];
       const room::Listener& li = room.listeners[l];
       if (ambix) {  // its W channel is the omni channel
-        spatial_irs.push_back(ir::synthesizeAmbisonic(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                                      sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l),
-                                                      opts->order, li.forward, li.left, li.up));
-        channels.push_back(spatial_irs.back()[0]);
+        spatial_irs[l] = ir::synthesizeAmbisonic(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                 sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), opts->order,
+                                                 li.forward, li.left, li.up);
+        channels[l] = spatial_irs[l][0];
       } else if (binaural) {  // the omni channel comes with it
-        channels.emplace_back();
-        spatial_irs.push_back(ir::synthesizeBinaural(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                                     sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf,
-                                                     li.forward, li.left, li.up, ir::Phasing::Orthogonal,
-                                                     &channels.back()));
+        spatial_irs[l] = ir::synthesizeBinaural(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                                sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l), *hrtf,
+                                                li.forward, li.left, li.up, ir::Phasing::Orthogonal, &channels[l]);
       } else {
-        channels.push_back(ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
-                                          sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l)));
+        channels[l] = ir::synthesize(resp, room.output.sample_rate_hz, sim.length_s, room.volume(),
+                                     sim.speed_of_sound_m_s, ir::listenerSeed(common.seed, l));
       }
+      wav_metrics[l] = ir::metricsFromSignal(channels[l], room.output.sample_rate_hz, room.bands);
+      // ISO 3382-1 A.3 figures of the spatial IR: J_LF, J_LFC and L_J (re the sources' free field at 10 m)
+      // from W and Y; IACC_E and IACC_L from the ears.
+      if (!spatial_irs.empty()) {
+        const auto& s = spatial_irs[l];
+        spatial_metrics[l] = ambix ? ir::lateralFractions(s[0], s[1], room.output.sample_rate_hz, room.bands, total_power_w / 100.0)
+                                   : ir::interauralCrossCorrelation(s[0], s[1], room.output.sample_rate_hz, room.bands);
+      }
+    });
+    for (std::size_t l = 0; l < listener_count; ++l) {
+      const auto& resp = sim.listeners[l];
+      const room::Listener& li = room.listeners[l];
       std::vector<std::vector<double>> totals;
       for (int b = 0; b < room.bands.size(); ++b) totals.push_back(resp.total(b));
       auto from_hist = ir::metricsFromHistograms(totals, resp.bin_s);
-      auto from_wav = ir::metricsFromSignal(channels.back(), room.output.sample_rate_hz, room.bands);
+      std::vector<ir::BandMetrics>& from_wav = wav_metrics[l];
       // Standard errors (jackknife over the ray batches) and marks; the WAV's figures get the histogram's
       // standard errors, and a band whose energy sums negative no figure from either.
       traced_t30.emplace_back();
@@ -339,14 +356,10 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
         else std::snprintf(cell, sizeof cell, " %s -", room.bands.label(b).c_str());
         dir_line += cell;
       }
-      // ISO 3382-1 A.3 figures of the spatial IR: J_LF, J_LFC and L_J (re the sources' free field at 10 m)
-      // from W and Y; IACC_E and IACC_L from the ears.
       nlohmann::ordered_json spatial_json;
       std::string spatial_table;
       if (!spatial_irs.empty()) {
-        const auto& s = spatial_irs.back();
-        const auto m = ambix ? ir::lateralFractions(s[0], s[1], room.output.sample_rate_hz, room.bands, total_power_w / 100.0)
-                             : ir::interauralCrossCorrelation(s[0], s[1], room.output.sample_rate_hz, room.bands);
+        const auto& m = spatial_metrics[l];
         spatial_json = ir::spatialJson(room.bands, m, ambix);
         spatial_table = "listener " + li.name + " (" + opts->format + ", ISO 3382-1 A.3):\n" +
                         ir::spatialTable(room.bands, m, ambix);

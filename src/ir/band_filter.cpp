@@ -6,6 +6,9 @@
 #include <cmath>
 #include <mutex>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "diffray/core/error.h"
 #include "diffray/core/fftw_planner.h"
 #include "diffray/core/math.h"
@@ -56,14 +59,29 @@ void RealFft::forward(const std::vector<double>& x, std::vector<std::complex<dou
   spectrum.assign(c, c + bins());
 }
 
+void RealFft::forwardBins(const double* x, std::size_t size, int first, int count, std::complex<double>* out) {
+  DIFFRAY_CHECK(first >= 0 && count >= 0 && first + count <= bins());
+  const size_t n = std::min(size, static_cast<size_t>(n_));
+  std::copy(x, x + n, real_);
+  std::fill(real_ + n, real_ + n_, 0.0);
+  fftw_execute(static_cast<fftw_plan>(forward_plan_));
+  const auto* c = reinterpret_cast<const std::complex<double>*>(complex_);  // layout-compatible
+  std::copy(c + first, c + first + count, out);
+}
+
 std::vector<double> RealFft::inverse(const std::vector<std::complex<double>>& spectrum, long count) {
+  std::vector<double> out;
+  inverse(spectrum, count, out);
+  return out;
+}
+
+void RealFft::inverse(const std::vector<std::complex<double>>& spectrum, long count, std::vector<double>& out) {
   DIFFRAY_CHECK(static_cast<int>(spectrum.size()) == bins() && count >= 0 && count <= n_);
   std::copy(spectrum.begin(), spectrum.end(), reinterpret_cast<std::complex<double>*>(complex_));
   fftw_execute(static_cast<fftw_plan>(inverse_plan_));  // c2r overwrites its input: hence the copy
-  std::vector<double> out(real_, real_ + count);
+  out.assign(real_, real_ + count);
   const double scale = 1.0 / n_;
   for (double& v : out) v *= scale;
-  return out;
 }
 
 int fastFftLength(long n) {
@@ -147,16 +165,24 @@ BandGains BandFilter::gains(int band, int fft_length) const {
 
 std::vector<std::vector<double>> BandFilter::split(const std::vector<double>& x) const {
   const int m = fftLengthFor(static_cast<long>(x.size()));
-  RealFft fft(m);
-  std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<size_t>(fft.bins()));
-  fft.forward(x, spectrum);
-  std::vector<std::vector<double>> out;
-  for (int b = 0; b < bands_.size(); ++b) {
+  std::vector<std::complex<double>> spectrum;
+  RealFft(m).forward(x, spectrum);
+  // Per thread: an FFT and a band spectrum, zero but on the band last written (cleared after use).
+  struct Work {
+    RealFft fft;
+    std::vector<std::complex<double>> band_spectrum;
+    explicit Work(int size) : fft(size), band_spectrum(static_cast<size_t>(size / 2 + 1)) {}
+  };
+  tbb::enumerable_thread_specific<Work> works(m);
+  std::vector<std::vector<double>> out(static_cast<size_t>(bands_.size()));
+  tbb::parallel_for(0, bands_.size(), [&](int b) {
+    Work& work = works.local();
     const BandGains g = gains(b, m);
-    std::fill(band_spectrum.begin(), band_spectrum.end(), std::complex<double>(0.0, 0.0));
-    for (size_t i = 0; i < g.w.size(); ++i) band_spectrum[g.first + i] = g.w[i] * spectrum[g.first + i];
-    out.push_back(fft.inverse(band_spectrum, static_cast<long>(x.size())));
-  }
+    for (size_t i = 0; i < g.w.size(); ++i) work.band_spectrum[g.first + i] = g.w[i] * spectrum[g.first + i];
+    work.fft.inverse(work.band_spectrum, static_cast<long>(x.size()), out[static_cast<size_t>(b)]);
+    std::fill(work.band_spectrum.begin() + g.first, work.band_spectrum.begin() + g.first + static_cast<long>(g.w.size()),
+              std::complex<double>(0.0, 0.0));
+  });
   return out;
 }
 

@@ -5,13 +5,16 @@
 #include <complex>
 #include <functional>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "diffray/core/error.h"
+#include "diffray/core/parallel.h"
 #include "diffray/core/rng.h"
 #include "diffray/ir/band_filter.h"
 #include "diffray/spatial/hrtf.h"
 #include "diffray/spatial/spherical_harmonics.h"
+#include "band_refilter.h"
 #include "synthesis_plan.h"
 
 namespace diffray::ir {
@@ -70,14 +73,17 @@ struct BandDiracs {
   std::vector<double> amp;
 };
 
-/// Writes the weighted sequences (the response's length, zero elsewhere) of every output for one band.
+/// Writes the weighted sequences (the response's length, zero on entry) of every output for one band: it
+/// may assign or add samples.
 using RenderBand = std::function<void(const BandDiracs&, std::vector<std::vector<double>>&)>;
 
-/// The traced part of `outputs` signals, each silent before plan.quiet like W's: per band (in parallel, each
-/// its own FFT; summed in band order, so the same samples for any thread count), W's Diracs with their
-/// directions and amplitudes (below), rendered by `render` into one sequence per output, each made into a
-/// band part as synthesis.cpp makes W's (filtered, back to the response's length, its spectrum on the band's
-/// bins) and turned as W's traced part was.
+/// The `outputs` signals, each the inverse of its spectrum `direct[o]` (all bins; the arrivals, kept whole)
+/// plus its traced part, silent before plan.quiet like W's. The traced part: per band (in parallel, each
+/// with its thread's FFT and buffers; summed in band order, so the same samples for any thread count), W's
+/// Diracs with their directions and amplitudes (below), rendered by `render` into one sequence per output,
+/// each made into a band part as synthesis.cpp makes W's (filtered, back to the response's length, its
+/// spectrum on the band's bins: the last two steps by band_refilter.h) and turned as W's traced part was.
+/// The outputs go back to time in parallel, each alone.
 //
 // Directions: with probability r_E the band's energy vector's direction u around the Dirac's time, otherwise
 // the Dirac's diffuse direction; one uniform and one diffuse direction per Dirac, shared by the bands, so
@@ -95,95 +101,101 @@ using RenderBand = std::function<void(const BandDiracs&, std::vector<std::vector
 std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, const detail::SynthesisPlan& plan,
                                                const std::vector<BandGains>& gains, std::uint64_t seed,
                                                const std::function<core::Vec3(const core::Vec3&)>& local,
-                                               std::size_t outputs, const RenderBand& render) {
-  const std::size_t n = static_cast<std::size_t>(plan.samples);
-  std::vector<std::vector<double>> out(outputs, std::vector<double>(n, 0.0));
-  if (plan.gains.empty()) return out;
-  std::vector<long> at;
-  std::vector<std::size_t> bin_of;
-  const std::size_t bins = plan.bin_start.size() - 1;
-  for (std::size_t i = 0; i < bins; ++i)
-    for (long s = plan.bin_start[i]; s < plan.bin_start[i + 1]; ++s)
-      if (plan.diracs[static_cast<std::size_t>(s)] != 0.0) at.push_back(s), bin_of.push_back(i);
-  core::Rng rng(seed, kStreamDirections);
-  std::vector<double> pick(at.size());
-  std::vector<core::Vec3> diffuse(at.size());
-  for (std::size_t q = 0; q < at.size(); ++q) pick[q] = rng.uniform(), diffuse[q] = uniformDirection(rng);
+                                               const std::vector<std::vector<std::complex<double>>>& direct,
+                                               const RenderBand& render) {
+  const std::size_t n = static_cast<std::size_t>(plan.samples), outputs = direct.size();
+  // Per thread: an FFT of the plan's length and one sequence per output, zeroed again after each use.
+  struct Workspace {
+    RealFft fft;
+    std::vector<std::vector<double>> sequences;
+    Workspace(int m, std::size_t count, std::size_t samples) : fft(m), sequences(count, std::vector<double>(samples, 0.0)) {}
+  };
+  tbb::enumerable_thread_specific<Workspace> workspaces(plan.fft_size, plan.gains.empty() ? std::size_t{0} : outputs, n);
   const std::size_t nbands = std::min(static_cast<std::size_t>(response.bands.size()), plan.gains.size());
   std::vector<std::vector<std::vector<std::complex<double>>>> parts(nbands);  // [band][output][band bin]
-  tbb::parallel_for(std::size_t{0}, nbands, [&](std::size_t band) {
-    const BandGains& bg = gains[band];
-    RealFft fft(plan.fft_size);
-    const BandDirections dirs = bandDirections(response, static_cast<int>(band), static_cast<int>(bins));
-    const std::vector<double>& g = plan.gains[band];
-    const double bandwidth_hz = response.bands.upperHz(static_cast<int>(band)) - response.bands.lowerHz(static_cast<int>(band));
-    const auto half = static_cast<std::size_t>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * response.bin_s)));
-    std::vector<double> weighted(n, 0.0), w_energy(bins), diag(bins, 0.0), count(bins, 0.0);
-    std::vector<std::complex<double>> spectrum, band_spectrum(static_cast<std::size_t>(fft.bins()));
-    const auto bandPart = [&](const std::vector<double>& x) {
-      fft.forward(x, spectrum);
-      std::fill(band_spectrum.begin(), band_spectrum.end(), std::complex<double>(0.0, 0.0));
-      for (std::size_t j = 0; j < bg.w.size(); ++j)
-        band_spectrum[static_cast<std::size_t>(bg.first) + j] = bg.w[j] * spectrum[static_cast<std::size_t>(bg.first) + j];
-      return fft.inverse(band_spectrum, plan.samples);
-    };
-    // W's band part and its energy per bin.
-    for (std::size_t q = 0; q < at.size(); ++q)
-      weighted[static_cast<std::size_t>(at[q])] = g[bin_of[q]] * plan.diracs[static_cast<std::size_t>(at[q])];
-    const std::vector<double> w_part = bandPart(weighted);
-    for (std::size_t i = 0; i < bins; ++i) {
-      double sum = 0.0;
-      for (long s = std::max(plan.bin_start[i], plan.quiet); s < plan.bin_start[i + 1]; ++s)
-        sum += w_part[static_cast<std::size_t>(s)] * w_part[static_cast<std::size_t>(s)];
-      w_energy[i] = sum;
-    }
-    double unit = 0.0;  // the energy of a unit Dirac through the band filter, (2/m)·Σ W_b²
-    for (double w : bg.w) unit += w * w;
-    unit *= 2.0 / fft.size();
-    for (std::size_t q = 0; q < at.size(); ++q)
-      if (at[q] >= plan.quiet) {
-        const double d = plan.diracs[static_cast<std::size_t>(at[q])], a = g[bin_of[q]] * d;
-        diag[bin_of[q]] += a * a * unit;
-        count[bin_of[q]] += d * d * unit;
+  if (nbands > 0) {
+    std::vector<long> at;
+    std::vector<std::size_t> bin_of;
+    const std::size_t bins = plan.bin_start.size() - 1;
+    for (std::size_t i = 0; i < bins; ++i)
+      for (long s = plan.bin_start[i]; s < plan.bin_start[i + 1]; ++s)
+        if (plan.diracs[static_cast<std::size_t>(s)] != 0.0) at.push_back(s), bin_of.push_back(i);
+    core::Rng rng(seed, kStreamDirections);
+    std::vector<double> pick(at.size());
+    std::vector<core::Vec3> diffuse(at.size());
+    for (std::size_t q = 0; q < at.size(); ++q) pick[q] = rng.uniform(), diffuse[q] = uniformDirection(rng);
+    const std::vector<std::complex<double>> window = detail::truncationWindowSpectrum(plan.fft_size, plan.samples);
+    DIFFRAY_CHECK(plan.band_energy.size() >= nbands);
+    tbb::parallel_for(std::size_t{0}, nbands, [&](std::size_t band) {
+      Workspace& ws = workspaces.local();
+      const BandGains& bg = gains[band];
+      const BandDirections dirs = bandDirections(response, static_cast<int>(band), static_cast<int>(bins));
+      const std::vector<double>& g = plan.gains[band];
+      const std::vector<double>& w_energy = plan.band_energy[band];  // W's band part's, per bin
+      DIFFRAY_CHECK(w_energy.size() == bins);
+      const double bandwidth_hz = response.bands.upperHz(static_cast<int>(band)) - response.bands.lowerHz(static_cast<int>(band));
+      const auto half = static_cast<std::size_t>(std::lround(0.5 * kResolutionCycles / (bandwidth_hz * response.bin_s)));
+      std::vector<double> diag(bins, 0.0), count(bins, 0.0);
+      double unit = 0.0;  // the energy of a unit Dirac through the band filter, (2/m)·Σ W_b²
+      for (double w : bg.w) unit += w * w;
+      unit *= 2.0 / ws.fft.size();
+      for (std::size_t q = 0; q < at.size(); ++q)
+        if (at[q] >= plan.quiet) {
+          const double d = plan.diracs[static_cast<std::size_t>(at[q])], a = g[bin_of[q]] * d;
+          diag[bin_of[q]] += a * a * unit;
+          count[bin_of[q]] += d * d * unit;
+        }
+      std::vector<double> f_directional(bins, 1.0), h_diffuse(bins, 0.0);
+      for (std::size_t i = 0; i < bins; ++i) {
+        const std::size_t lo = i > half ? i - half : 0, hi = std::min(bins - 1, i + half);
+        double ws_sum = 0.0, ds = 0.0, cs = 0.0;
+        for (std::size_t j = lo; j <= hi; ++j) ws_sum += w_energy[j], ds += diag[j], cs += count[j];
+        if (!(ws_sum > 0.0)) continue;
+        if (cs > 0.0) h_diffuse[i] = std::sqrt(ws_sum / cs);
+        const double mixed = ds + dirs.r[i] * (ws_sum - ds);
+        if (mixed > 0.0) f_directional[i] = std::sqrt(ws_sum / mixed);
       }
-    std::vector<double> f_directional(bins, 1.0), h_diffuse(bins, 0.0);
-    for (std::size_t i = 0; i < bins; ++i) {
-      const std::size_t lo = i > half ? i - half : 0, hi = std::min(bins - 1, i + half);
-      double ws = 0.0, ds = 0.0, cs = 0.0;
-      for (std::size_t j = lo; j <= hi; ++j) ws += w_energy[j], ds += diag[j], cs += count[j];
-      if (!(ws > 0.0)) continue;
-      if (cs > 0.0) h_diffuse[i] = std::sqrt(ws / cs);
-      const double mixed = ds + dirs.r[i] * (ws - ds);
-      if (mixed > 0.0) f_directional[i] = std::sqrt(ws / mixed);
-    }
-    BandDiracs d;
-    d.at = at;
-    d.dir.resize(at.size());
-    d.amp.resize(at.size());
-    for (std::size_t q = 0; q < at.size(); ++q) {
-      const std::size_t i = bin_of[q];
-      const bool directional = pick[q] < dirs.r[i];
-      d.dir[q] = local(directional ? dirs.u[i] : diffuse[q]);
-      d.amp[q] = (directional ? g[i] * f_directional[i] : h_diffuse[i]) * plan.diracs[static_cast<std::size_t>(at[q])];
-    }
-    std::vector<std::vector<double>> sequences(outputs, std::vector<double>(n, 0.0));
-    render(d, sequences);
-    parts[band].resize(outputs);
-    for (std::size_t o = 0; o < outputs; ++o) {
-      fft.forward(bandPart(sequences[o]), spectrum);
-      parts[band][o].assign(spectrum.begin() + bg.first, spectrum.begin() + bg.first + static_cast<long>(bg.w.size()));
-    }
-  });
-  RealFft fft(plan.fft_size);
-  for (std::size_t o = 0; o < outputs; ++o) {
+      BandDiracs d;
+      d.at = at;
+      d.dir.resize(at.size());
+      d.amp.resize(at.size());
+      for (std::size_t q = 0; q < at.size(); ++q) {
+        const std::size_t i = bin_of[q];
+        const bool directional = pick[q] < dirs.r[i];
+        d.dir[q] = local(directional ? dirs.u[i] : diffuse[q]);
+        d.amp[q] = (directional ? g[i] * f_directional[i] : h_diffuse[i]) * plan.diracs[static_cast<std::size_t>(at[q])];
+      }
+      render(d, ws.sequences);
+      // Each output's band spectrum, made a band part as W's was (back to the response's length, forward
+      // again) on the band's bins alone (band_refilter.h: the same spectrum to rounding).
+      const int len = static_cast<int>(bg.w.size());
+      detail::BandRefilter refilter(window, ws.fft.size(), bg.first, len);
+      std::vector<std::complex<double>> spectrum(bg.w.size());
+      parts[band].assign(outputs, std::vector<std::complex<double>>(bg.w.size()));
+      for (std::size_t o = 0; o < outputs; ++o) {
+        std::vector<double>& x = ws.sequences[o];
+        ws.fft.forwardBins(x.data(), x.size(), bg.first, len, spectrum.data());
+        std::fill(x.begin(), x.end(), 0.0);
+        for (std::size_t j = 0; j < bg.w.size(); ++j) spectrum[j] = bg.w[j] * spectrum[j];
+        refilter.apply(spectrum.data(), parts[band][o].data());
+      }
+    });
+  }
+  std::vector<std::vector<double>> out(outputs);
+  tbb::parallel_for(std::size_t{0}, outputs, [&](std::size_t o) {
+    RealFft& fft = workspaces.local().fft;
+    fft.inverse(direct[o], plan.samples, out[o]);
+    if (nbands == 0) return;
     std::vector<std::complex<double>> sum(static_cast<std::size_t>(fft.bins()), {0.0, 0.0});
     for (std::size_t b = 0; b < nbands; ++b) {
       const std::complex<double> turn = b < plan.traced_turn.size() ? plan.traced_turn[b] : std::complex<double>(1.0, 0.0);
       for (std::size_t j = 0; j < parts[b][o].size(); ++j) sum[static_cast<std::size_t>(gains[b].first) + j] += turn * parts[b][o][j];
     }
-    out[o] = fft.inverse(sum, plan.samples);
-    std::fill(out[o].begin(), out[o].begin() + std::min(plan.quiet, plan.samples), 0.0);
-  }
+    std::vector<double> traced;
+    fft.inverse(sum, plan.samples, traced);
+    std::fill(traced.begin(), traced.begin() + std::min(plan.quiet, plan.samples), 0.0);
+    for (std::size_t s = 0; s < n; ++s) out[o][s] += traced[s];
+  });
   return out;
 }
 
@@ -205,45 +217,48 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
   out[0] = detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed,
                                      Phasing::Orthogonal, &plan);
   const BandFilter filter(response.bands, sample_rate_hz);
-  RealFft fft(plan.fft_size);
-  const int m = fft.size(), nb = response.bands.size();
+  const int m = plan.fft_size, nb = response.bands.size();
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
-  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}).
-  std::vector<std::vector<std::complex<double>>> arrivals(channels, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
-  std::vector<double> y(channels);
-  for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
-    const Arrival& arrival = response.arrivals[a];
-    if (!(arrival.direction.norm() > 0.0)) continue;
-    spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
-    const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
-    const std::complex<double> step = std::polar(1.0, phase_step);
-    for (int b = 0; b < nb; ++b) {
-      const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
-      if (c == std::complex<double>(0.0, 0.0)) continue;
-      const BandGains& g = gains[static_cast<std::size_t>(b)];
-      std::complex<double> z = std::polar(1.0, phase_step * g.first);
-      for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) {
-        const std::complex<double> pulse = c * g.w[j] * z;
-        for (std::size_t ch = 1; ch < channels; ++ch) arrivals[ch][static_cast<std::size_t>(g.first) + j] += y[ch] * pulse;
+  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}). The channels
+  // in one contiguous block per thread, each block summing its channels in arrival order as one thread
+  // would: the same spectra for any thread count.
+  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));  // [channel − 1][bin]
+  const std::size_t blocks = std::min(channels - 1, static_cast<std::size_t>(std::max(1, core::ThreadLimit::current())));
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
+    const std::size_t ch_begin = 1 + block * (channels - 1) / blocks, ch_end = 1 + (block + 1) * (channels - 1) / blocks;
+    std::vector<double> y(channels);
+    std::vector<std::complex<double>> pulse;  // the arrival's pulse on one band's bins
+    for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
+      const Arrival& arrival = response.arrivals[a];
+      if (!(arrival.direction.norm() > 0.0)) continue;
+      spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
+      const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
+      const std::complex<double> step = std::polar(1.0, phase_step);
+      for (int b = 0; b < nb; ++b) {
+        const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+        if (c == std::complex<double>(0.0, 0.0)) continue;
+        const BandGains& g = gains[static_cast<std::size_t>(b)];
+        pulse.resize(g.w.size());
+        std::complex<double> z = std::polar(1.0, phase_step * g.first);
+        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) pulse[j] = c * g.w[j] * z;
+        for (std::size_t ch = ch_begin; ch < ch_end; ++ch) {
+          std::complex<double>* to = arrivals[ch - 1].data() + g.first;
+          for (std::size_t j = 0; j < g.w.size(); ++j) to[j] += y[ch] * pulse[j];
+        }
       }
     }
-  }
-  const std::vector<std::vector<double>> traced =
-      tracedOutputs(response, plan, gains, seed, local, channels - 1,
-                    [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
-                      std::vector<double> ys(channels);
-                      for (std::size_t q = 0; q < d.at.size(); ++q) {
-                        spatial::realSphericalHarmonicsSn3d(order, d.dir[q], ys.data());
-                        for (std::size_t ch = 1; ch < channels; ++ch)
-                          seq[ch - 1][static_cast<std::size_t>(d.at[q])] = d.amp[q] * ys[ch];
-                      }
-                    });
-  for (std::size_t ch = 1; ch < channels; ++ch) {
-    out[ch] = fft.inverse(arrivals[ch], plan.samples);
-    for (std::size_t s = 0; s < out[ch].size(); ++s) out[ch][s] += traced[ch - 1][s];
-  }
+  });
+  std::vector<std::vector<double>> rest =
+      tracedOutputs(response, plan, gains, seed, local, arrivals, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
+        std::vector<double> ys(channels);
+        for (std::size_t q = 0; q < d.at.size(); ++q) {
+          spatial::realSphericalHarmonicsSn3d(order, d.dir[q], ys.data());
+          for (std::size_t ch = 1; ch < channels; ++ch) seq[ch - 1][static_cast<std::size_t>(d.at[q])] = d.amp[q] * ys[ch];
+        }
+      });
+  for (std::size_t ch = 1; ch < channels; ++ch) out[ch] = std::move(rest[ch - 1]);
   return out;
 }
 
@@ -260,8 +275,7 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
       detail::synthesizePlanned(response, sample_rate_hz, length_s, volume_m3, speed_of_sound_m_s, seed, phasing, &plan);
   if (omni) *omni = std::move(w_channel);
   const BandFilter filter(response.bands, sample_rate_hz);
-  RealFft fft(plan.fft_size);
-  const int m = fft.size(), nb = response.bands.size();
+  const int m = plan.fft_size, nb = response.bands.size();
   const std::size_t n = static_cast<std::size_t>(plan.samples), taps = static_cast<std::size_t>(hrtf.taps());
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
@@ -274,9 +288,8 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   };
   // Arrivals: each band's pulse c·W_b·e^{−2πifτ} through the HRIR of the arrival's direction, at the sample
   // nearest its delay: per band and ear, the HRIRs placed with weights Re(c) and Im(c) in two sequences X_R,
-  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}).
-  std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(fft.bins())));
-  std::vector<std::complex<double>> spectrum_r, spectrum_i;
+  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}). The bands in
+  // parallel (each thread with its FFT and two sequences, zeroed again after use), added in band order.
   // Each arrival's HRIR pair and sample, once (−1: beyond the response).
   const std::size_t arrivals = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
   std::vector<int> measured(arrivals, 0);
@@ -287,41 +300,51 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
     const long s = std::lround(arrival.delay_s * sample_rate_hz);
     if (s >= 0 && static_cast<std::size_t>(s) < n) sample[a] = s;
   }
-  for (int b = 0; b < nb; ++b) {
+  struct Workspace {
+    RealFft fft;
+    std::vector<double> xr, xi;
+    Workspace(int size, std::size_t samples) : fft(size), xr(samples, 0.0), xi(samples, 0.0) {}
+  };
+  tbb::enumerable_thread_specific<Workspace> workspaces(m, n);
+  std::vector<std::vector<std::vector<std::complex<double>>>> band_ears(static_cast<std::size_t>(nb));  // [band][side][band bin]
+  tbb::parallel_for(0, nb, [&](int b) {
+    Workspace& ws = workspaces.local();
+    const BandGains& g = gains[static_cast<std::size_t>(b)];
+    const int len = static_cast<int>(g.w.size());
+    std::vector<std::complex<double>> spectrum_r(g.w.size()), spectrum_i(g.w.size());
+    band_ears[static_cast<std::size_t>(b)].resize(2);
     for (int side = 0; side < 2; ++side) {
-      std::vector<double> xr(n, 0.0), xi(n, 0.0);
       bool any = false;
       for (std::size_t a = 0; a < arrivals; ++a) {
         const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
         if (c == std::complex<double>(0.0, 0.0) || sample[a] < 0) continue;
         const float* h = hrtf.ear(measured[a], side);
-        place(xr, sample[a], h, c.real());
-        place(xi, sample[a], h, c.imag());
+        place(ws.xr, sample[a], h, c.real());
+        place(ws.xi, sample[a], h, c.imag());
         any = true;
       }
       if (!any) continue;
-      fft.forward(xr, spectrum_r);
-      fft.forward(xi, spectrum_i);
-      const BandGains& g = gains[static_cast<std::size_t>(b)];
-      for (std::size_t j = 0; j < g.w.size(); ++j) {
-        const std::size_t k = static_cast<std::size_t>(g.first) + j;
-        ears[static_cast<std::size_t>(side)][k] += g.w[j] * (spectrum_r[k] + std::complex<double>(0.0, 1.0) * spectrum_i[k]);
-      }
+      ws.fft.forwardBins(ws.xr.data(), n, g.first, len, spectrum_r.data());
+      ws.fft.forwardBins(ws.xi.data(), n, g.first, len, spectrum_i.data());
+      std::fill(ws.xr.begin(), ws.xr.end(), 0.0);
+      std::fill(ws.xi.begin(), ws.xi.end(), 0.0);
+      auto& part = band_ears[static_cast<std::size_t>(b)][static_cast<std::size_t>(side)];
+      part.resize(g.w.size());
+      for (std::size_t j = 0; j < g.w.size(); ++j) part[j] = g.w[j] * (spectrum_r[j] + std::complex<double>(0.0, 1.0) * spectrum_i[j]);
     }
-  }
-  const std::vector<std::vector<double>> traced =
-      tracedOutputs(response, plan, gains, seed, local, 2, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
-        for (std::size_t q = 0; q < d.at.size(); ++q) {
-          const int i = hrtf.nearest(d.dir[q]);
-          for (int side = 0; side < 2; ++side) place(seq[static_cast<std::size_t>(side)], d.at[q], hrtf.ear(i, side), d.amp[q]);
-        }
-      });
-  std::vector<std::vector<double>> out(2);
-  for (std::size_t side = 0; side < 2; ++side) {
-    out[side] = fft.inverse(ears[side], plan.samples);
-    for (std::size_t s = 0; s < n; ++s) out[side][s] += traced[side][s];
-  }
-  return out;
+  });
+  std::vector<std::vector<std::complex<double>>> ears(2, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));
+  for (int b = 0; b < nb; ++b)
+    for (std::size_t side = 0; side < 2; ++side) {
+      const auto& part = band_ears[static_cast<std::size_t>(b)][side];
+      for (std::size_t j = 0; j < part.size(); ++j) ears[side][static_cast<std::size_t>(gains[static_cast<std::size_t>(b)].first) + j] += part[j];
+    }
+  return tracedOutputs(response, plan, gains, seed, local, ears, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
+    for (std::size_t q = 0; q < d.at.size(); ++q) {
+      const int i = hrtf.nearest(d.dir[q]);
+      for (int side = 0; side < 2; ++side) place(seq[static_cast<std::size_t>(side)], d.at[q], hrtf.ear(i, side), d.amp[q]);
+    }
+  });
 }
 
 }  // namespace diffray::ir

@@ -145,7 +145,18 @@ std::vector<BandSpectrum> tracedParts(const EnergyResponse& r, const BandFilter&
       for (int i = 0; i < bins; ++i)
         for (long s = spans.start[i]; s < spans.start[i + 1]; ++s) weighted[s] = g[i] * d[s];
       db = bandPass(filter, fft, weighted, k);
-      if (it == kGainIterations) break;
+      if (it == kGainIterations) {
+        if (plan) {
+          std::vector<double> energy(static_cast<size_t>(bins));
+          for (int i = 0; i < bins; ++i) {
+            double sum = 0.0;
+            for (long s = std::max(spans.start[i], quiet); s < spans.start[i + 1]; ++s) sum += db[s] * db[s];
+            energy[i] = sum;
+          }
+          plan->band_energy.push_back(std::move(energy));
+        }
+        break;
+      }
       std::fill(db.begin(), db.begin() + std::min(quiet, n), 0.0);  // silenced in the end (combine)
       for (int i = 0; i < bins; ++i) x[i] = binEnergy(db, spans, i);
       for (int i = 0; i < bins; ++i) {

@@ -18,6 +18,9 @@ struct SynthesisPlan {
   std::vector<double> diracs;               ///< ±1 (or their sums) at each event's sample, the filled bins' included
   std::vector<long> bin_start;              ///< bin i covers samples bin_start[i] … bin_start[i+1] − 1
   std::vector<std::vector<double>> gains;   ///< [band][bin]: the final gain of the band's Diracs (empty: no traced part)
+  /// [band][bin]: the energy of W's band part (the Diracs at their final gains, filtered, before the turn)
+  /// in each bin, from sample `quiet` on
+  std::vector<std::vector<double>> band_energy;
   std::vector<std::complex<double>> traced_turn;  ///< [band]: the traced part's rotation times its rescaling
   /// [arrival][band] (the response's arrival order): the coefficient of the band's unit pulse W_b·e^{−2πifτ};
   /// 0 for a band (or an arrival) not placed.

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <memory>
 
+#include <tbb/parallel_for.h>
+
 #include "diffray/core/error.h"
 #include "diffray/dsp/resample.h"
 
@@ -83,9 +85,12 @@ Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
         ir[2 * (k + static_cast<std::size_t>(shift)) + r] = v;
       }
     }
-    if (h.file_rate_hz_ != sample_rate_hz) ir = dsp::resampleImpulseResponse(ir, 2, h.file_rate_hz_, sample_rate_hz);
     irs.push_back(std::move(ir));
   }
+  if (h.file_rate_hz_ != sample_rate_hz)  // each measurement alone (its own converter), in parallel
+    tbb::parallel_for(std::size_t{0}, irs.size(), [&](std::size_t m) {
+      irs[m] = dsp::resampleImpulseResponse(irs[m], 2, h.file_rate_hz_, sample_rate_hz);
+    });
   // The delay common to every HRIR (the measurement's distance, the converter's latency) is dropped, up to
   // 8 samples kept ahead of the earliest onset (a tap above 1 % of its HRIR's peak), so that a binaural
   // response starts where W does.
@@ -132,22 +137,39 @@ int cellOf(const core::Vec3& d) {
 
 void Hrtf::index() {
   const double radius = 1.5 * core::kPi / 180.0;  // a 2° × 2° cell's angular radius is at most √2°
-  cell_start_.assign(1, 0);
-  candidates_.clear();
-  std::vector<double> angle(dirs_.size());
-  for (int e = 0; e < kElCells; ++e)
+  // Each elevation row's cells in parallel (their candidates and counts), then joined in cell order.
+  std::vector<std::vector<int>> row_candidates(kElCells), row_counts(kElCells);
+  // The angles are compared through their cosines (acos is decreasing), acos taken only for the largest
+  // cosine and for a cosine within 1e-12 of the threshold's, where rounding could decide: the same
+  // candidates as acos of every cosine, at one acos per cell instead of one per measurement.
+  tbb::parallel_for(0, kElCells, [&](int e) {
+    std::vector<double> cosine(dirs_.size());
     for (int a = 0; a < kAzCells; ++a) {
       const double az = -core::kPi + (a + 0.5) * core::kTwoPi / kAzCells, el = -0.5 * core::kPi + (e + 0.5) * core::kPi / kElCells;
       const core::Vec3 c(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
-      double nearest = core::kPi;
+      double largest = -1.0;
       for (std::size_t i = 0; i < dirs_.size(); ++i) {
-        angle[i] = std::acos(std::max(-1.0, std::min(1.0, dirs_[i].dot(c))));
-        nearest = std::min(nearest, angle[i]);
+        cosine[i] = std::max(-1.0, std::min(1.0, dirs_[i].dot(c)));
+        largest = std::max(largest, cosine[i]);
       }
-      for (std::size_t i = 0; i < dirs_.size(); ++i)
-        if (angle[i] <= nearest + 2.0 * radius + 1e-9) candidates_.push_back(static_cast<int>(i));
-      cell_start_.push_back(static_cast<int>(candidates_.size()));
+      const double threshold = std::acos(largest) + 2.0 * radius + 1e-9;
+      const double threshold_cos = std::cos(threshold);
+      const std::size_t before = row_candidates[e].size();
+      for (std::size_t i = 0; i < dirs_.size(); ++i) {
+        const bool candidate = threshold >= core::kPi ? true
+                               : std::abs(cosine[i] - threshold_cos) > 1e-12 ? cosine[i] > threshold_cos
+                                                                              : std::acos(cosine[i]) <= threshold;
+        if (candidate) row_candidates[e].push_back(static_cast<int>(i));
+      }
+      row_counts[e].push_back(static_cast<int>(row_candidates[e].size() - before));
     }
+  });
+  cell_start_.assign(1, 0);
+  candidates_.clear();
+  for (int e = 0; e < kElCells; ++e) {
+    candidates_.insert(candidates_.end(), row_candidates[e].begin(), row_candidates[e].end());
+    for (int count : row_counts[e]) cell_start_.push_back(cell_start_.back() + count);
+  }
 }
 
 int Hrtf::nearest(const core::Vec3& d) const {

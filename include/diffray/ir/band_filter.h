@@ -18,6 +18,7 @@
 // Thread-safety: a BandFilter is immutable and may be shared; RealFft objects are one per thread. FFTW plan
 // creation and destruction hold core::fftwPlannerMutex().
 #include <complex>
+#include <cstddef>
 #include <vector>
 
 #include "diffray/core/bands.h"
@@ -36,8 +37,13 @@ class RealFft {
   int bins() const { return n_ / 2 + 1; }  ///< spectrum length: k = 0 … n/2, frequency k·fs/n
   /// spectrum[k] = Σ_j x[j]·e^{−2πi·jk/n}, x zero-padded (or truncated) to n.
   void forward(const std::vector<double>& x, std::vector<std::complex<double>>& spectrum);
+  /// forward() of the `size` samples at x, keeping only bins first … first + count − 1 (written to out):
+  /// no vector touched beyond those, for callers that reuse their buffers.
+  void forwardBins(const double* x, std::size_t size, int first, int count, std::complex<double>* out);
   /// The inverse of forward (scaled by 1/n); returns the first `count` samples.
   std::vector<double> inverse(const std::vector<std::complex<double>>& spectrum, long count);
+  /// The same into `out` (resized to count; no allocation once it has the capacity).
+  void inverse(const std::vector<std::complex<double>>& spectrum, long count, std::vector<double>& out);
 
  private:
   int n_;
@@ -87,7 +93,7 @@ class BandFilter {
   long ringSamples(int band) const;
   BandGains gains(int band, int fft_length) const;
 
-  /// Every band of x: out[b] has x's length.
+  /// Every band of x: out[b] has x's length. The bands go back to time in parallel (TBB), each alone.
   std::vector<std::vector<double>> split(const std::vector<double>& x) const;
 
  private:

@@ -15,7 +15,8 @@
 // table holding, per cell, every measurement that can be nearest to a direction in it (those within the angle
 // of the one nearest the cell's centre plus twice the cell's angular radius, by the triangle inequality).
 // Units: the HRIRs are dimensionless filter taps at sampleRateHz(). Thread-safety: immutable after load();
-// share freely.
+// share freely. load() resamples the measurements and builds the table on TBB's pool, each measurement and
+// each cell alone (the same set for any thread count).
 #include <string>
 #include <vector>
 
