@@ -346,9 +346,18 @@ TEST(RoomOccluderFile, BarrierWithSideEdgesAddsAZoneBesideEach) {
   EXPECT_EQ(own[0], &room.occluders[0]);
   scene["occluders"][0]["side_edges"] = 1;
   EXPECT_THROW(parse(scene), diffray::core::InputError);
-  // "foot_edge": a 4 × 1 m zone below the foot (z in [−1, 0]), open toward −z, along the base.
+  // "foot_edge": refused while the foot stands on the room's floor (z = 0); in free field, a 4 × 1 m zone
+  // below the foot (z in [−1, 0]), open toward −z, along the base.
   scene["occluders"][0]["side_edges"] = false;
   scene["occluders"][0]["foot_edge"] = true;
+  try {
+    parse(scene);
+    ADD_FAILURE() << "a foot on the floor was accepted";
+  } catch (const diffray::core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("occluders[0].foot_edge: the barrier's foot stands on surface"), std::string::npos)
+        << e.what();
+  }
+  scene.erase("geometry");
   const dr::Room footed = parse(scene);
   ASSERT_EQ(footed.occluders.size(), 2u);
   const dr::Occluder& f = footed.occluders[1];

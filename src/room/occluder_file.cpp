@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "diffray/core/error.h"
+#include "diffray/room/checks.h"
 
 namespace diffray::room {
 namespace {
@@ -250,6 +251,20 @@ void parseOccluders(const JsonField& list, Room& room, const std::function<int(c
         // edge in the panel's plane, open away from the panel (the corners' quarter-planes beyond two zones
         // stay plain).
         if (o.has("foot_edge") && o["foot_edge"].boolean()) {
+          // A foot standing on a surface is no edge: the zone would lie under it, where no sound goes.
+          const Vec3 mid = 0.5 * (p0 + p1);
+          const double tol = 1e-9 * (1.0 + mid.cwiseAbs().maxCoeff() + (p1 - p0).norm());
+          for (std::size_t t = 0; t < room.mesh.triangles.size(); ++t) {
+            const auto& tri = room.mesh.triangles[t];
+            const Vec3 a = room.mesh.vertices[tri[0]], b = room.mesh.vertices[tri[1]], c = room.mesh.vertices[tri[2]];
+            const Vec3 n = (b - a).cross(c - a);
+            if (room.isOpening(room.mesh.object_of_triangle[t]) || !(n.norm() > 0.0) ||
+                std::abs(n.normalized().dot(up)) < 1.0 - 1e-9 || (closestOnTriangle(mid, a, b, c) - mid).norm() > tol)
+              continue;
+            const std::string group = t < room.group_of_triangle.size() ? room.group_of_triangle[t] : std::string();
+            o["foot_edge"].fail("the barrier's foot stands on surface " + group +
+                                ", so it is no edge (a zone under it would get no sound); leave foot_edge out");
+          }
           more.push_back(edgeZoneOccluder(p0, p1, -up, edgeZone(o), o.where()));
           more.back().name = name + "/foot";
         }
