@@ -268,5 +268,21 @@ TEST(HrtfSofa, SofaFilesThatAreNoTwoEarHrtfSetRefusedInOneLine) {
   refuses("nan", nan, "delays are out of range");
 }
 
+TEST(HrtfSofa, AFileLibmysofaReadsWithoutEndRefusedInOneLine) {
+  // tests/data/sofa_endless_read.sofa: tests/fuzz/sofa_seed.cdl's set with bytes shuffled by fuzz_sofa, on
+  // which libmysofa 1.3.1's reader does not return (in this process it ran past 60 s). The reader's child
+  // process is given 2 s plus 1 s per MB: refused in one line, naming the file.
+  const std::string path = std::string(DIFFRAY_SOURCE_DIR) + "/tests/data/sofa_endless_read.sofa";
+  try {
+    Hrtf::load(path, 48000.0);
+    ADD_FAILURE() << "accepted";
+  } catch (const core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("libmysofa did not finish reading it in 2 s"), std::string::npos) << what;
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace diffray::spatial

@@ -1,11 +1,19 @@
 #include "diffray/spatial/hrtf.h"
 
 #include <mysofa.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
+#include <thread>
 
 #include <tbb/parallel_for.h>
 
@@ -19,6 +27,40 @@ namespace {
 struct SofaFree {
   void operator()(MYSOFA_HRTF* h) const { mysofa_free(h); }
 };
+
+// libmysofa 1.3.1 can loop without end on a malformed file (its HDF5 reader seeking round a cycle), or
+// crash on one. So the file is read once in a child process first, given 2 s plus 1 s per MB (the KEMAR
+// set, 1.2 MB, takes about 0.1 s): "" when that read finished, otherwise why the file is refused. Where
+// no child can be made, the file is read in this process alone.
+std::string childRead(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  const double limit_s = 2.0 + (ec ? 0.0 : static_cast<double>(bytes) / 1e6);
+  const pid_t pid = ::fork();
+  if (pid < 0) return "";
+  if (pid == 0) {  // the child: read, then leave without running this process's exit handlers
+    int err = 0;
+    mysofa_load(path.c_str(), &err);
+    ::_exit(0);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit_s);
+  int status = 0;
+  for (;;) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) return "";
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      char limit[32];
+      std::snprintf(limit, sizeof limit, "%.0f", limit_s);
+      return std::string("libmysofa did not finish reading it in ") + limit + " s (a malformed file)";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (WIFSIGNALED(status)) return "libmysofa crashed reading it (signal " + std::to_string(WTERMSIG(status)) + ")";
+  return "";
+}
 
 }  // namespace
 
@@ -36,6 +78,7 @@ Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
       throw core::InputError(h.path_, "cannot read the HRTF file");
     }
   }
+  if (const std::string why = childRead(h.path_); !why.empty()) throw core::InputError(h.path_, "not a SOFA file: " + why);
   int err = 0;
   std::unique_ptr<MYSOFA_HRTF, SofaFree> sofa(mysofa_load(h.path_.c_str(), &err));
   if (!sofa || err != MYSOFA_OK)
