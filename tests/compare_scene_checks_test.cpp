@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 
 #include "diffray/compare/point_models.h"
@@ -43,6 +44,17 @@ std::string errorOf(F f) {
     return e.what();
   }
   return "";
+}
+
+// rooms/screen.json with the text `from` (which must occur) replaced by `to`, loaded from a copy in `dir`.
+dr::Room screenWith(const diffray::test::TempDir& dir, const std::string& from, const std::string& to) {
+  std::ifstream in(kRooms + "screen.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("screen.json has no " + from);
+  text.replace(at, from.size(), to);
+  std::ofstream(dir.file("screen.json")) << text;
+  return dr::loadRoom(dir.file("screen.json"));
 }
 
 dc::CompareOptions wbsdfOnly(bool aim) {
@@ -172,13 +184,7 @@ TEST(CompareSceneChecks, AimRefusesAListenerReachedUnderAFloatingPanel) {
   // the ground at t = 0.5/2.5, y = −2 + 4·0.2 = −1.2, and rises to cross y = 0 at z = 2·1.2/3.2 = 0.75,
   // through the gap under the panel: no aimed ray takes that path.
   diffray::test::TempDir dir("aim_floating");
-  std::ifstream in(kRooms + "screen.json");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string base = "[[-2, 0, 0], [2, 0, 0]]";
-  ASSERT_NE(text.find(base), std::string::npos);
-  text.replace(text.find(base), base.size(), "[[-2, 0, 1], [2, 0, 1]]");
-  std::ofstream(dir.file("floating.json")) << text;
-  dr::Room room = dr::loadRoom(dir.file("floating.json"));
+  dr::Room room = screenWith(dir, "[[-2, 0, 0], [2, 0, 0]]", "[[-2, 0, 1], [2, 0, 1]]");
   room.listeners = {dr::Listener{"gap", Vec3(0, 2, 2), 0.15}};
   const std::string msg = errorOf([&] { dc::compareScene(room, wbsdfOnly(true)); });
   EXPECT_NE(msg.find("listener gap at (0, 2, 2) hears source S by a reflection off the ground"), std::string::npos) << msg;
@@ -192,13 +198,7 @@ TEST(CompareSceneChecks, ABarriersSideEdgesKeepItsExactModelAndItsAim) {
   // rooms/screen.json with "side_edges": three occluders, one object. The exact model is the same BTM plate
   // (equal values at a listener, 250 Hz and 1 kHz); --aim aims at the three zones.
   diffray::test::TempDir dir("side_edges");
-  std::ifstream in(kRooms + "screen.json");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string key = "\"extent_m\": 2.0}";
-  ASSERT_NE(text.find(key), std::string::npos);
-  text.replace(text.find(key), key.size(), "\"extent_m\": 2.0, \"side_edges\": true}");
-  std::ofstream(dir.file("sides.json")) << text;
-  const dr::Room sides = dr::loadRoom(dir.file("sides.json"));
+  const dr::Room sides = screenWith(dir, "\"extent_m\": 2.0}", "\"extent_m\": 2.0, \"side_edges\": true}");
   const dr::Room plain = dr::loadRoom(kRooms + "screen.json");
   ASSERT_EQ(sides.occluders.size(), 3u);
   std::string why_not, assumption, why_not_plain, assumption_plain;
