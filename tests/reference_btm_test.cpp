@@ -9,7 +9,7 @@
 //   the diffracted field's jump there equal to the geometric wave that switches;
 // - the finite plate (reference/btm_plate.h): a 400 m square plate near the middle of one edge against
 //   Macdonald's half-plane; reciprocity and continuity across an edge's shadow and reflection boundaries on
-//   a 4 × 2 m plate.
+//   a 4 × 2 m plate, and the field exactly on such a boundary.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +19,7 @@
 #include "diffray/core/error.h"
 #include "diffray/reference/btm_edge.h"
 #include "diffray/reference/btm_plate.h"
+#include "diffray/reference/btm_spectrum.h"
 #include "diffray/reference/half_plane_point.h"
 #include "quadrature_rules.h"
 
@@ -234,6 +235,29 @@ TEST(ReferenceBtmPlate, ContinuousAcrossAnEdgesShadowAndReflectionBoundaries) {
     // The geometric part switches on one side only; the sum does not jump (a missing half wave: ~0.5).
     EXPECT_GT(std::abs((hi.direct + hi.specular) - (lo.direct + lo.specular)), 0.1);
     EXPECT_LT(std::abs(hi.total() - lo.total()), 1e-4 * std::abs(lo.total())) << from.x();
+  }
+}
+
+TEST(ReferenceBtmPlate, ExactlyOnAnEdgesBoundaryTheFieldIsItsLimitFromEitherSide) {
+  // Receivers exactly on the top edge's shadow boundary (2 m past the edge on the line from the source
+  // through it) and on its reflection boundary (the same from the source's image): the edge's term is
+  // dropped there and the wave it switches counts half, so the field is the limit from either side, one
+  // frequency at a time and in a spectrum. Without the half wave the shadow point reads the far edges only
+  // (about −20 dB re the half wave at 2 kHz).
+  const ref::BtmPlate plate = plate4x2();
+  const Vec3 s(-2.0, 0.2, 0.5);
+  for (const Vec3& on : {Vec3(2.0, 0.2, 3.5), Vec3(-2.0, 0.2, 3.5)}) {  // through the edge (0, 0.2, 2)
+    const Vec3 across(-0.6, 0.0, 0.8);  // in the plane y = 0.2, through both boundaries
+    for (const double f : {250.0, 2000.0}) {
+      const double k = 2.0 * kPi * f / kC, d = 1e-7;
+      const Complex lo = ref::btmPlateField(k, plate, s, on - d * across, 2).total();
+      const Complex hi = ref::btmPlateField(k, plate, s, on + d * across, 2).total();
+      const Complex at = ref::btmPlateField(k, plate, s, on, 2).total();
+      const Complex spectrum = ref::btmPlateSpectrum({k}, plate, std::nan(""), s, on, 2)[0].total();
+      EXPECT_LT(std::abs(hi - lo), 1e-4 * std::abs(lo)) << on.transpose() << " " << f;
+      EXPECT_LT(std::abs(at - lo), 1e-4 * std::abs(lo)) << on.transpose() << " " << f;
+      EXPECT_LT(std::abs(spectrum - lo), 1e-4 * std::abs(lo)) << on.transpose() << " " << f;
+    }
   }
 }
 

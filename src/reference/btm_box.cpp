@@ -117,7 +117,7 @@ class BoxPaths {
   // The path lengths of the direct wave (if the segment does not enter the box) and of the faces' images.
   GeometricWaves geometric() const {
     GeometricWaves w;
-    if (!segmentEntersBox(source_, receiver_)) w.direct_m.push_back((receiver_ - source_).norm());
+    if (!segmentEntersBox(source_, receiver_)) w.direct.push_back({(receiver_ - source_).norm(), 1.0});
     for (int f = 0; f < 6; ++f) {
       const int a = faceAxis(f);
       const double plane = faceSign(f) > 0.0 ? box_.max_m[a] : box_.min_m[a];
@@ -129,7 +129,7 @@ class BoxPaths {
       bool on_face = true;
       for (int c = 0; c < 3; ++c)
         if (c != a && (at[c] < box_.min_m[c] || at[c] > box_.max_m[c])) on_face = false;
-      if (on_face) w.specular_m.push_back((receiver_ - image).norm());
+      if (on_face) w.specular.push_back({(receiver_ - image).norm(), 1.0});
     }
     return w;
   }
@@ -235,8 +235,8 @@ BtmBoxField fieldAt(double k, const BtmBox& box, double ground_z_m, const Vec3& 
   const double wavelength = 2.0 * kPi / k;
   for (const BoxPaths& sc : scenes(box, ground_z_m, source, receiver, order)) {
     const GeometricWaves w = sc.geometric();
-    for (double r : w.direct_m) u.direct += std::polar(1.0 / r, -k * r);
-    for (double r : w.specular_m) u.specular += std::polar(1.0 / r, -k * r);
+    for (const GeometricWave& g : w.direct) u.direct += std::polar(g.weight / g.path_m, -k * g.path_m);
+    for (const GeometricWave& g : w.specular) u.specular += std::polar(g.weight / g.path_m, -k * g.path_m);
     for (std::size_t t = 0; t < sc.tasks(); ++t) {
       Complex& sum = sc.secondOrder(t) ? u.second_order : u.diffracted;
       sc.run(t, wavelength, [&](double path, double amplitude) { sum += std::polar(amplitude, -k * path); });
@@ -269,8 +269,8 @@ std::vector<BtmBoxField> btmBoxSpectrum(const std::vector<double>& wavenumbers_r
   std::vector<bool> second;
   for (std::size_t s = 0; s < all.size(); ++s) {
     const GeometricWaves w = all[s].geometric();
-    waves.direct_m.insert(waves.direct_m.end(), w.direct_m.begin(), w.direct_m.end());
-    waves.specular_m.insert(waves.specular_m.end(), w.specular_m.begin(), w.specular_m.end());
+    waves.direct.insert(waves.direct.end(), w.direct.begin(), w.direct.end());
+    waves.specular.insert(waves.specular.end(), w.specular.begin(), w.specular.end());
     all[s].pathRange(&lo, &hi);
     for (std::size_t t = 0; t < all[s].tasks(); ++t) tasks.emplace_back(s, t), second.push_back(all[s].secondOrder(t));
   }

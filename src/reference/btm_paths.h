@@ -231,9 +231,15 @@ struct SpectrumAxis {
   SpectrumAxis(const std::vector<double>& wavenumbers, int order);
 };
 
-/// The geometric waves of a spectrum: the path lengths of its direct waves and of its specular images.
+/// One geometric wave: its path length and its weight, 1 inside its zone and ½ on the zone's boundary
+/// (where the edge term that switches it is dropped: btm_kernel.h).
+struct GeometricWave {
+  double path_m, weight;
+};
+
+/// The geometric waves of a spectrum: its direct waves and its specular images.
 struct GeometricWaves {
-  std::vector<double> direct_m, specular_m;
+  std::vector<GeometricWave> direct, specular;
 };
 
 /// The fields at `wavenumbers` from the geometric waves (exact) and the first- and second-order grids

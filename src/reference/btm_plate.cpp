@@ -10,6 +10,7 @@
 #include "btm_plate_paths.h"
 #include "diffray/core/error.h"
 #include "diffray/reference/band_grid.h"
+#include "diffray/reference/btm_kernel.h"
 #include "diffray/reference/btm_spectrum.h"
 
 namespace diffray::reference {
@@ -58,13 +59,6 @@ bool insidePolygon(const BtmPlate& plate, const PlateFrame& f, const Vec3& p) {
   return true;
 }
 
-bool crossesPlane(const PlateFrame& f, const Vec3& p, const Vec3& q, Vec3* at) {
-  const double dp = (p - f.centroid).dot(f.normal), dq = (q - f.centroid).dot(f.normal);
-  if (!(dp * dq < 0.0)) return false;
-  *at = p + (q - p) * (dp / (dp - dq));
-  return true;
-}
-
 std::vector<EdgeFrame> edgeFrames(const BtmPlate& plate, const PlateFrame& f) {
   std::vector<EdgeFrame> frames;
   const std::size_t n = plate.vertices.size();
@@ -90,13 +84,23 @@ GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const 
   const double on_plane = 1e-12 * f.scale;
   if (std::abs(ds) <= on_plane && insidePolygon(plate, f, source)) throw core::InputError("source", "lies on the plate");
   if (std::abs(dr) <= on_plane && insidePolygon(plate, f, receiver)) throw core::InputError("receiver", "lies on the plate");
-  const double none = std::nan("");
-  GeometricPaths paths{none, none};
-  Vec3 at;
-  if (!(crossesPlane(f, source, receiver, &at) && insidePolygon(plate, f, at))) paths.direct_m = (receiver - source).norm();
+  const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
+  // How far the line from p to q, which crosses the plate's plane, passes beside the plate, as an angle: the
+  // largest over the edges of π − |θq − θp| (azimuths about each edge, x into the plate). Positive where
+  // the line crosses the plane beyond that edge, negative where it crosses the plate, 0 on an edge's line.
+  const auto passMargin = [&](const Vec3& p, const Vec3& q) {
+    double m = -kPi;
+    for (const EdgeFrame& e : edges) m = std::max(m, kPi - std::abs(e.of(q).phi_rad - e.of(p).phi_rad));
+    return m;
+  };
+  const auto weight = [](double margin) {
+    return margin > kBtmOnBoundaryRad ? 1.0 : (margin < -kBtmOnBoundaryRad ? 0.0 : 0.5);
+  };
+  GeometricPaths paths{{(receiver - source).norm(), 1.0}, {0.0, 0.0}};
+  if (ds * dr < 0.0) paths.direct.weight = weight(passMargin(source, receiver));
   if (ds * dr > 0.0) {
     const Vec3 image = source - 2.0 * ds * f.normal;
-    if (crossesPlane(f, image, receiver, &at) && insidePolygon(plate, f, at)) paths.specular_m = (receiver - image).norm();
+    paths.specular = {(receiver - image).norm(), weight(-passMargin(image, receiver))};
   }
   return paths;
 }
@@ -153,8 +157,8 @@ std::vector<BtmNode> firstOrderNodes(const std::vector<EdgeFrame>& edges, const 
 using namespace btm_detail;
 
 namespace {
-std::complex<double> spherical(double k, double r) {
-  return std::isnan(r) ? std::complex<double>(0.0, 0.0) : std::polar(1.0 / r, -k * r);
+std::complex<double> spherical(double k, const GeometricWave& w) {
+  return w.weight > 0.0 ? std::polar(w.weight / w.path_m, -k * w.path_m) : std::complex<double>(0.0, 0.0);
 }
 }  // namespace
 
@@ -167,8 +171,8 @@ BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, cons
   const GeometricPaths paths = geometricPaths(plate, f, source, receiver);
   const double k = wavenumber_rad_m, wavelength = 2.0 * kPi / k;
   BtmPlateField u;
-  u.direct = spherical(k, paths.direct_m);
-  u.specular = spherical(k, paths.specular_m);
+  u.direct = spherical(k, paths.direct);
+  u.specular = spherical(k, paths.specular);
   const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
   for (const BtmNode& q : firstOrderNodes(edges, source, receiver, wavelength)) u.diffracted += std::polar(q.amplitude, -k * q.path_m);
   if (order >= 2) {

@@ -25,17 +25,16 @@ PlateFrame checkPlate(const BtmPlate& plate);
 /// Whether the point p of the plate's plane lies inside the polygon (convex: left of every edge).
 bool insidePolygon(const BtmPlate& plate, const PlateFrame& f, const core::Vec3& p);
 
-/// Where the segment from p to q crosses the plate's plane, if its ends lie strictly on opposite sides.
-bool crossesPlane(const PlateFrame& f, const core::Vec3& p, const core::Vec3& q, core::Vec3* at);
-
 /// The plate's edge frames (btm_plate.h): x in the plate's plane pointing into the plate, y the normal.
 std::vector<EdgeFrame> edgeFrames(const BtmPlate& plate, const PlateFrame& f);
 
-/// The geometric field's path lengths at `receiver`: the direct wave's (NaN where the plate blocks it) and
-/// the specular image's (NaN where the reflection point is off the plate). Throws when a point lies on the
-/// plate.
+/// The geometric field at `receiver`: the direct wave and the specular image, each with weight 1 in its
+/// zone, ½ where its line grazes an edge (within kBtmOnBoundaryRad: that edge's first-order term is dropped
+/// there, btm_kernel.h, and the half wave keeps the total field continuous, as btmInfiniteWedgeField's) and
+/// 0 outside (the plate blocks the direct wave; the reflection point is off the plate). Throws when a point
+/// lies on the plate.
 struct GeometricPaths {
-  double direct_m, specular_m;
+  GeometricWave direct, specular;
 };
 GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const core::Vec3& source,
                               const core::Vec3& receiver);

@@ -40,8 +40,8 @@ std::vector<BtmField> spectrumFields(const std::vector<double>& wavenumbers, con
   tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t i) {
     const double k = wavenumbers[i];
     BtmField& u = out[i];
-    for (double r : waves.direct_m) u.direct += std::polar(1.0 / r, -k * r);
-    for (double r : waves.specular_m) u.specular += std::polar(1.0 / r, -k * r);
+    for (const GeometricWave& w : waves.direct) u.direct += std::polar(w.weight / w.path_m, -k * w.path_m);
+    for (const GeometricWave& w : waves.specular) u.specular += std::polar(w.weight / w.path_m, -k * w.path_m);
     u.diffracted = first.sum(k);
     if (second != nullptr) u.second_order = second->sum(k);
   });
@@ -80,8 +80,8 @@ std::vector<BtmPlateField> btmPlateSpectrum(const std::vector<double>& wavenumbe
     Scene sc{p, checkPlate(p), {}, s};
     sc.edges = edgeFrames(p, sc.frame);
     const GeometricPaths paths = geometricPaths(p, sc.frame, s, receiver);
-    if (!std::isnan(paths.direct_m)) waves.direct_m.push_back(paths.direct_m);
-    if (!std::isnan(paths.specular_m)) waves.specular_m.push_back(paths.specular_m);
+    if (paths.direct.weight > 0.0) waves.direct.push_back(paths.direct);
+    if (paths.specular.weight > 0.0) waves.specular.push_back(paths.specular);
     scenes.push_back(sc);
   };
   if (std::isnan(ground_z_m)) {
