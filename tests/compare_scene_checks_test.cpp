@@ -240,3 +240,30 @@ TEST(CompareSceneChecks, ShadowAngleOfAListenerUnderTheEdgeIsWrapped) {
 }
 
 }  // namespace
+
+TEST(CompareSceneChecks, ShadowAngleOfAPlateIsPastTheEdgeNearestToLightingTheListener) {
+  // Every angle below is worked out in the plane across one edge. From S (0, −2, 0.5) the top edge (z = 2)
+  // casts its boundary up at atan(1.5/2); a side edge (x = ±2, in the plane z = 0.5) at 45° off the panel;
+  // the free plate's foot (z = 0) down at atan(0.5/2).
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  diffray::test::TempDir dir("plate_angles");
+  const dr::Room sides = screenWith(dir, "\"extent_m\": 2.0}", "\"extent_m\": 2.0, \"side_edges\": true}");
+  const Vec3 s = sides.sources[0].position_m;
+  const auto angle = [&](const dr::Room& room, const Vec3& p) {
+    const auto a = dc::shadowAngleDeg(room, s, p);
+    EXPECT_TRUE(a.has_value());
+    return a.value_or(0.0);
+  };
+  // Behind the middle, 0.5 m high: the top edge's (atan(1.5/2) + atan(1.5/2)); the sides are 90° away.
+  EXPECT_NEAR(angle(sides, Vec3(0, 2, 0.5)), 2.0 * std::atan(0.75) * kDeg, 1e-9);
+  // 0.5 m past the side edge: the side's, atan(2/0.5) − 45°, not the top's 73.7°.
+  EXPECT_NEAR(angle(sides, Vec3(2.5, 2, 0.5)), std::atan(4.0) * kDeg - 45.0, 1e-9);
+  // Lit past the side edge (the line from S crosses y = 0 at x = 2.5): atan(2/3) − 45°, negative.
+  EXPECT_NEAR(angle(sides, Vec3(5, 2, 0.5)), std::atan(2.0 / 3.0) * kDeg - 45.0, 1e-9);
+  // The free plate (rooms/plate.json) also diffracts at its foot: behind the middle at 0.5 m the listener is
+  // only 2·atan(0.5/2) past the foot's boundary.
+  const dr::Room plate = dr::loadRoom(kRooms + "plate.json");
+  EXPECT_NEAR(angle(plate, Vec3(0, 2, 0.5)), 2.0 * std::atan(0.25) * kDeg, 1e-9);
+  // Above the plate, 10° into the light of its top edge.
+  EXPECT_NEAR(angle(plate, Vec3(0, 2, 2.0 + 2.0 * std::tan(std::atan(0.75) + 10.0 / kDeg))), -10.0, 1e-9);
+}

@@ -81,23 +81,35 @@ bool beyondOccluder(const room::Room& room, const Vec3& p) {
   return (room.sources[0].position_m - d.origin_m).dot(d.normal) * (p - d.origin_m).dot(d.normal) < 0.0;
 }
 
+// The listener's angle past one edge's shadow boundary, in the plane across the edge: angles from the screen
+// face (−ex), the source's side +.
+double edgeShadowAngleDeg(const room::Occluder& o, const Vec3& source, const Vec3& listener) {
+  const Vec3 e0 = o.origin_m - o.half_x_m * o.ex;
+  const auto angle = [&](const Vec3& p, double side) {
+    const Vec3 d = p - e0;
+    double a = std::atan2(side * d.dot(o.normal), -d.dot(o.ex));
+    return a < 0 ? a + 2.0 * core::kPi : a;
+  };
+  const double side = (source - e0).dot(o.normal) >= 0 ? 1.0 : -1.0;
+  const double phi0 = angle(source, side), phi = angle(listener, side);
+  return wrapDegrees((phi - core::kPi - phi0) * 180.0 / core::kPi);
+}
+
 }  // namespace
 
 std::optional<double> shadowAngleDeg(const room::Room& room, const Vec3& source, const Vec3& listener) {
-  const std::vector<const room::Occluder*> own = room::ownOccluders(room);  // a barrier's: its top edge's angle
+  const std::vector<const room::Occluder*> own = room::ownOccluders(room);
   if (own.size() != 1) return std::nullopt;
   const room::Occluder& o = *own[0];
   if (o.x.kind == Kind::Edge) {
-    // Around the edge, in the plane across it: angles from the screen face (−ex), the source's side +.
-    const Vec3 e0 = o.origin_m - o.half_x_m * o.ex;
-    const auto angle = [&](const Vec3& p, double side) {
-      const Vec3 d = p - e0;
-      double a = std::atan2(side * d.dot(o.normal), -d.dot(o.ex));
-      return a < 0 ? a + 2.0 * core::kPi : a;
-    };
-    const double side = (source - e0).dot(o.normal) >= 0 ? 1.0 : -1.0;
-    const double phi0 = angle(source, side), phi = angle(listener, side);
-    return wrapDegrees((phi - core::kPi - phi0) * 180.0 / core::kPi);
+    // A barrier's top edge and, where they diffract, its side and foot edges ("barrier side" zones): the
+    // straight line from the source passes the plate, and the listener is lit, exactly when it passes one
+    // of the edges, so the listener is as far into the shadow as past the edge that comes nearest to
+    // lighting it: the least of the edges' angles.
+    double least = edgeShadowAngleDeg(o, source, listener);
+    for (const room::Occluder& side : room.occluders)
+      if (side.type == "barrier side") least = std::min(least, edgeShadowAngleDeg(side, source, listener));
+    return least;
   }
   if (o.x.kind == Kind::Opening || o.x.kind == Kind::Slits) {
     // In the plane spanned by ex and the normal: each side edge's boundary continues the line from the

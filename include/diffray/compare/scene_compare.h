@@ -69,7 +69,8 @@ struct SceneComparison {
 SceneComparison compareScene(const room::Room& room, const CompareOptions& options);
 
 /// The listener's angle past the shadow boundary of the room's single occluder, seen from the source:
-/// an edge's (around the edge), a door's or slit's (across its nearer side edge, in the plane through
+/// an edge's (around the edge; for a barrier with side or foot edges, the least of its edges' angles, each
+/// in the plane across its edge), a door's or slit's (across its nearer side edge, in the plane through
 /// the source spanned by the occluder's normal and x axis). Empty when the scene has no single occluder.
 std::optional<double> shadowAngleDeg(const room::Room& room, const core::Vec3& source, const core::Vec3& listener);
 
