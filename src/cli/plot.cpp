@@ -255,8 +255,15 @@ void writeComparePlot(const std::string& png_path, const room::Room& room, const
         << "]\nset xlabel 'frequency (Hz)'\nset title " << quoted(title.str()) << "\n"
         << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\nunset logscale x\nset autoscale x\n";
     }
-    // Level against angle past the shadow boundary, per band.
+    // Level against angle past the shadow boundary, per band: joined by lines, unless two listeners share
+    // an angle (listeners round different edges, as in rooms/plate-zones.json), where points only.
     if (angles) {
+      std::vector<double> seen;
+      for (const auto& a : c.shadow_angle_deg)
+        if (a) seen.push_back(*a);
+      std::sort(seen.begin(), seen.end());
+      bool join = true;
+      for (std::size_t i = 1; i < seen.size(); ++i) join = join && seen[i] - seen[i - 1] > 0.5;
       for (int b = 0; b < nb; ++b) {
         std::string plots;
         for (int m = 0; m < 4; ++m) {
@@ -271,7 +278,9 @@ void writeComparePlot(const std::string& png_path, const room::Room& room, const
           if (pts.empty()) continue;
           const std::string colour = std::string("lc rgb '") + kColours[m] + "'";
           plots += (plots.empty() ? "" : ", ") + quoted(path.string()) +
-                   (m == 3 ? " u 1:2:3 w yerrorlines pt 7 ps 0.6 " : " u 1:2 w lp pt 6 ps 0.6 ") + colour + " title '" + kModels[m] + "'";
+                   (m == 3 ? (join ? " u 1:2:3 w yerrorlines pt 7 ps 0.6 " : " u 1:2:3 w yerrorbars pt 7 ps 0.8 ")
+                           : (join ? " u 1:2 w lp pt 6 ps 0.6 " : " u 1:2 w p pt 6 ps 1.2 ")) +
+                   colour + " title '" + kModels[m] + "'";
         }
         s << "set xlabel 'angle past the shadow boundary (deg)'\nset title " << quoted(room.bands.label(b) + " Hz band") << "\n"
           << (plots.empty() ? "plot NaN notitle" : "plot " + plots) << "\n";
