@@ -59,14 +59,16 @@ void RealFft::forward(const std::vector<double>& x, std::vector<std::complex<dou
   spectrum.assign(c, c + bins());
 }
 
-void RealFft::forwardBins(const double* x, std::size_t size, int first, int count, std::complex<double>* out) {
-  DIFFRAY_CHECK(first >= 0 && count >= 0 && first + count <= bins());
-  const size_t n = std::min(size, static_cast<size_t>(n_));
-  std::copy(x, x + n, real_);
-  std::fill(real_ + n, real_ + n_, 0.0);
-  fftw_execute(static_cast<fftw_plan>(forward_plan_));
-  const auto* c = reinterpret_cast<const std::complex<double>*>(complex_);  // layout-compatible
-  std::copy(c + first, c + first + count, out);
+std::complex<double>* RealFft::spectrum() {
+  return reinterpret_cast<std::complex<double>*>(complex_);  // layout-compatible
+}
+
+void RealFft::forwardInput() {
+  fftw_execute(static_cast<fftw_plan>(forward_plan_));  // an out-of-place r2c keeps its input
+}
+
+void RealFft::inverseSpectrum() {
+  fftw_execute(static_cast<fftw_plan>(inverse_plan_));
 }
 
 std::vector<double> RealFft::inverse(const std::vector<std::complex<double>>& spectrum, long count) {
