@@ -290,35 +290,48 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
-  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}). The channels
-  // in one contiguous block per thread, each block summing its channels in arrival order as one thread
-  // would: the same spectra for any thread count.
-  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));  // [channel − 1][bin]
-  const std::size_t blocks = std::min(channels - 1, static_cast<std::size_t>(std::max(1, core::ThreadLimit::current())));
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
-    const std::size_t ch_begin = 1 + block * (channels - 1) / blocks, ch_end = 1 + (block + 1) * (channels - 1) / blocks;
-    std::vector<double> y(channels);
-    std::vector<std::complex<double>> pulse;  // the arrival's pulse on one band's bins
-    for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
-      const Arrival& arrival = response.arrivals[a];
-      if (!(arrival.direction.norm() > 0.0)) continue;
-      spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
-      const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
-      const std::complex<double> step = std::polar(1.0, phase_step);
-      for (int b = 0; b < nb; ++b) {
-        const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}), each channel's
+  // bins summed over the arrivals in order (and each arrival's bands in order). In blocks of bins, so that a
+  // block of every channel stays in cache while all the arrivals are added to it; each band's e^{−2πifτ}
+  // runs by one recurrence from its first bin, carried from block to block: the same spectra as arrival
+  // after arrival over whole bands.
+  const std::size_t bins = static_cast<std::size_t>(m / 2 + 1), nbands = static_cast<std::size_t>(nb);
+  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(bins));  // [channel − 1][bin]
+  const std::size_t count = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
+  std::vector<std::size_t> placed;             // the arrivals with a direction
+  std::vector<double> y;                       // [placed][channel]
+  std::vector<std::complex<double>> step, z;   // [placed], [placed][band]: e^{−2πi·τ·fs/m}, the band's next factor
+  for (std::size_t a = 0; a < count; ++a) {
+    const Arrival& arrival = response.arrivals[a];
+    if (!(arrival.direction.norm() > 0.0)) continue;
+    placed.push_back(a);
+    y.resize(placed.size() * channels);
+    spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data() + (placed.size() - 1) * channels);
+    const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
+    step.push_back(std::polar(1.0, phase_step));
+    for (const BandGains& g : gains) z.push_back(std::polar(1.0, phase_step * g.first));
+  }
+  constexpr std::size_t kBlockBins = 512;
+  std::vector<std::complex<double>> pulse(kBlockBins);  // one arrival's pulse on one band's bins in the block
+  for (std::size_t j0 = 0; j0 < bins; j0 += kBlockBins) {
+    const std::size_t j1 = std::min(bins, j0 + kBlockBins);
+    for (std::size_t p = 0; p < placed.size(); ++p)
+      for (std::size_t b = 0; b < nbands; ++b) {
+        const std::complex<double> c = plan.arrival_coefficients[placed[p]][b];
         if (c == std::complex<double>(0.0, 0.0)) continue;
-        const BandGains& g = gains[static_cast<std::size_t>(b)];
-        pulse.resize(g.w.size());
-        std::complex<double> z = std::polar(1.0, phase_step * g.first);
-        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) pulse[j] = c * g.w[j] * z;
-        for (std::size_t ch = ch_begin; ch < ch_end; ++ch) {
-          std::complex<double>* to = arrivals[ch - 1].data() + g.first;
-          for (std::size_t j = 0; j < g.w.size(); ++j) to[j] += y[ch] * pulse[j];
+        const BandGains& g = gains[b];
+        const std::size_t first = static_cast<std::size_t>(g.first);
+        const std::size_t lo = std::max(j0, first), hi = std::min(j1, first + g.w.size());
+        if (lo >= hi) continue;
+        std::complex<double>& zb = z[p * nbands + b];
+        for (std::size_t j = lo; j < hi; ++j, zb *= step[p]) pulse[j - lo] = c * g.w[j - first] * zb;
+        for (std::size_t ch = 1; ch < channels; ++ch) {
+          std::complex<double>* to = arrivals[ch - 1].data();
+          const double yc = y[p * channels + ch];
+          for (std::size_t j = lo; j < hi; ++j) to[j] += yc * pulse[j - lo];
         }
       }
-    }
-  });
+  }
   std::vector<std::vector<double>> rest =
       tracedOutputs(response, plan, gains, seed, local, arrivals, AmbisonicRenderer{order});
   for (std::size_t ch = 1; ch < channels; ++ch) out[ch] = std::move(rest[ch - 1]);
