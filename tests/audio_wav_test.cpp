@@ -58,6 +58,33 @@ TEST(AudioWav, Float32RoundTripIsBitExact) {
   sf_close(f);
 }
 
+// Channels held apart are written as the same file as their interleaved buffer, byte for byte; channels of
+// different lengths and a non-finite sample are refused before anything is written.
+TEST(AudioWav, PlanarChannelsWriteTheInterleavedFile) {
+  const TempDir dir("wav_planar");
+  AudioBuffer a;
+  a.sample_rate_hz = 48000;
+  a.channels = 3;
+  std::vector<std::vector<double>> planar(3, std::vector<double>(9000));
+  for (std::size_t f = 0; f < 9000; ++f)
+    for (std::size_t c = 0; c < 3; ++c) {
+      planar[c][f] = std::sin(0.01 * static_cast<double>(f) * static_cast<double>(c + 1)) / 3.0;  // rounds to float
+      a.samples.push_back(planar[c][f]);
+    }
+  writeWavFloat(dir.file("i.wav"), a);
+  writeWavFloat(dir.file("p.wav"), planar, 48000);
+  std::ifstream i(dir.file("i.wav"), std::ios::binary), p(dir.file("p.wav"), std::ios::binary);
+  const std::string ib{std::istreambuf_iterator<char>(i), {}}, pb{std::istreambuf_iterator<char>(p), {}};
+  EXPECT_GT(ib.size(), 9000u * 3u * 4u);  // the samples and a header
+  EXPECT_TRUE(ib == pb);
+  planar[2].pop_back();
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("q.wav"), planar, 48000); }).find("different lengths"), std::string::npos);
+  planar[2].push_back(0.0);
+  planar[1][4500] = NAN;
+  EXPECT_NE(errorOf([&] { writeWavFloat(dir.file("q.wav"), planar, 48000); }).find("frame 4500, channel 2"), std::string::npos);
+  EXPECT_EQ(dir.entries(), 2);
+}
+
 // The WAVE header per Microsoft's WAVEFORMATEX and WAVEFORMATEXTENSIBLE, read byte by byte here for both
 // writers (whole buffer and streaming). Every non-PCM format carries cbSize; one or two channels of float are
 // WAVE_FORMAT_IEEE_FLOAT (tag 3) in an 18-byte fmt chunk with cbSize 0; more than two channels require the

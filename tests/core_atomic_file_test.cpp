@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "diffray/core/atomic_file.h"
 #include "diffray/core/error.h"
@@ -77,6 +79,35 @@ TEST(CoreOutputFiles, CommitReplacesEveryFile) {
   EXPECT_EQ(contents(a), "new a");
   EXPECT_EQ(contents(b), "new b");
   EXPECT_EQ(dir.entries(), 2);
+}
+
+// writeEach: several files written in parallel, each from its index, staged and committed as write() does;
+// one writer failing leaves the previous run's files.
+TEST(CoreOutputFiles, WriteEachWritesEveryFileFromItsIndex) {
+  const diffray::test::TempDir dir("atomic_each");
+  const fs::path& d = dir.path;
+  std::vector<std::string> paths;
+  for (int i = 0; i < 6; ++i) paths.push_back((d / ("f" + std::to_string(i) + ".txt")).string());
+  writeText(paths[3], "old 3");
+  {
+    dc::OutputFiles files;
+    files.writeEach(paths, [](std::size_t i, const std::string& f) { writeText(f, "new " + std::to_string(i)); });
+    EXPECT_EQ(contents(paths[3]), "old 3");
+    files.commit();
+  }
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(contents(paths[static_cast<std::size_t>(i)]), "new " + std::to_string(i));
+  try {
+    dc::OutputFiles files;
+    files.writeEach(paths, [&](std::size_t i, const std::string& f) {
+      if (i == 4) throw dc::InputError(f, "cannot write");
+      writeText(f, "run 3");
+    });
+    FAIL() << "the fifth writer should have thrown";
+  } catch (const dc::InputError& e) {
+    EXPECT_EQ(e.where(), paths[4]);
+  }
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(contents(paths[static_cast<std::size_t>(i)]), "new " + std::to_string(i));
+  EXPECT_EQ(dir.entries(), 6);
 }
 
 TEST(CoreOutputFiles, LaterFailureKeepsThePreviousRunsFiles) {

@@ -3,9 +3,13 @@
 //   horizontal plane, 40 ms later: the AmbiX channels are W = δ(t) + a·δ(t − 40 ms), Y = a·sin φ·δ(t − 40 ms)
 //   (SN3D: Y = sin φ·cos θ), so J_LF = a²sin²φ/(1 + a²) and J_LFC = a²|sin φ|/(1 + a²) in every band;
 // - IACC of identical ears = 1; of one ear delayed by 0.5 ms (inside the ±1 ms lags) near 1; of independent
-//   noises near 0, within a bound from the number of independent samples in the window.
+//   noises near 0, within a bound from the number of independent samples in the window;
+// - one window's IACC (windowIacc) against the definition summed lag by lag, with windows that touch either
+//   end of the record, so that lags reach past it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -123,6 +127,28 @@ TEST(IrSpatialMetrics, IaccOfADelayedEarAndOfIndependentEars) {
     const double sigma = 1.0 / std::sqrt(2.0 * bw * 0.67);
     EXPECT_LT(m[static_cast<std::size_t>(b)].iacc_l, 4.0 * sigma) << bands.label(b);
   }
+}
+
+TEST(IrSpatialMetrics, WindowIaccIsTheLargestNormalisedCorrelationOverTheLags) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g;
+  std::vector<double> l(300), r(300);
+  for (std::size_t i = 0; i < l.size(); ++i) l[i] = g(rng), r[i] = 0.5 * l[(i + 290) % 300] + g(rng);
+  const long n = static_cast<long>(l.size());
+  // Windows at the start, inside and at the end; lag ranges shorter, longer and not a multiple of eight.
+  for (const auto& [from, to, max_lag] : {std::array<long, 3>{0, 120, 48}, {30, 250, 13}, {200, 300, 48}, {0, 300, 7},
+                                          {290, 300, 20}, {5, 300, 0}}) {
+    double el = 0.0, er = 0.0, best = 0.0;
+    for (long i = from; i < to; ++i) el += l[i] * l[i], er += r[i] * r[i];
+    for (long tau = -max_lag; tau <= max_lag; ++tau) {
+      double c = 0.0;
+      for (long i = from; i < to; ++i)
+        if (i + tau >= 0 && i + tau < n) c += l[i] * r[i + tau];
+      best = std::max(best, std::abs(c));
+    }
+    EXPECT_NEAR(ir::windowIacc(l, r, from, to, max_lag), best / std::sqrt(el * er), 1e-14) << from << " " << to << " " << max_lag;
+  }
+  EXPECT_TRUE(std::isnan(ir::windowIacc(std::vector<double>(10, 0.0), std::vector<double>(10, 1.0), 0, 10, 3)));
 }
 
 TEST(IrSpatialMetrics, RefusesMismatchedOrSilentInput) {

@@ -3,6 +3,7 @@
 #include <sndfile.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cfloat>
 #include <cstdint>
@@ -133,33 +134,64 @@ void requireWavFits(const std::string& field, double frames, int channels, doubl
   }
 }
 
-void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
+namespace {
+
+/// writeWavFloat of `channels` channels of `frames` frames at fs, sample_at(f, c) giving frame f of channel c.
+template <class SampleAt>
+void writeFloatSamples(const std::string& path, int channels, std::size_t frames, double fs, SampleAt sample_at) {
   // Everything is checked before a byte is written.
-  if (audio.channels < 1 || audio.channels > 1024)
-    throw core::InputError(path, "cannot write " + std::to_string(audio.channels) + " channels");
-  if (audio.samples.empty() || audio.samples.size() % static_cast<size_t>(audio.channels) != 0)
-    throw core::InputError(path, "cannot write: the sample count is zero or not a whole number of frames");
-  const double fs = audio.sample_rate_hz;
+  if (channels < 1 || channels > 1024)
+    throw core::InputError(path, "cannot write " + std::to_string(channels) + " channels");
+  if (frames == 0) throw core::InputError(path, "cannot write: the sample count is zero or not a whole number of frames");
   if (!(fs >= 1.0 && fs <= 1e7 && std::floor(fs) == fs))
     throw core::InputError(path, "cannot write a WAV at a sample rate of " + std::to_string(fs) +
                                      " Hz (a whole number of Hz is needed)");
-  for (size_t i = 0; i < audio.samples.size(); ++i) {
-    const double v = audio.samples[i];
-    if (!std::isfinite(v) || std::abs(v) > FLT_MAX)
-      throw core::InputError(path, "refusing to write sample at " + sampleWhere(static_cast<long>(i), audio.channels) +
-                                       ": " + (std::isnan(v) ? "NaN" : "not a finite 32-bit float"));
-  }
-  if (fs * 4.0 * audio.channels > 4294967295.0)
-    throw core::InputError(path, "cannot write a WAV of " + std::to_string(audio.channels) + " channels at " +
+  for (std::size_t f = 0; f < frames; ++f)
+    for (int c = 0; c < channels; ++c) {
+      const double v = sample_at(f, c);
+      if (!std::isfinite(v) || std::abs(v) > FLT_MAX)
+        throw core::InputError(path, "refusing to write sample at " +
+                                         sampleWhere(static_cast<long>(f) * channels + c, channels) + ": " +
+                                         (std::isnan(v) ? "NaN" : "not a finite 32-bit float"));
+    }
+  if (fs * 4.0 * channels > 4294967295.0)
+    throw core::InputError(path, "cannot write a WAV of " + std::to_string(channels) + " channels at " +
                                      std::to_string(fs) + " Hz (its byte rate field is 32-bit)");
-  const auto frames = static_cast<std::uint64_t>(audio.frames());
-  requireWavFits(path, static_cast<double>(frames), audio.channels, fs);
-  std::string bytes = floatWavHeader(audio.channels, static_cast<int>(fs), frames);
-  const std::vector<float> values(audio.samples.begin(), audio.samples.end());
-  appendFloat32LE(bytes, values.data(), values.size());
+  requireWavFits(path, static_cast<double>(frames), channels, fs);
+  std::string bytes = floatWavHeader(channels, static_cast<int>(fs), frames);
+  bytes.reserve(bytes.size() + frames * static_cast<std::size_t>(channels) * sizeof(float));
+  std::vector<float> block;  // interleaved, a few thousand frames at a time
+  constexpr std::size_t kBlockFrames = 4096;
+  for (std::size_t f0 = 0; f0 < frames; f0 += kBlockFrames) {
+    const std::size_t f1 = std::min(frames, f0 + kBlockFrames);
+    block.clear();
+    for (std::size_t f = f0; f < f1; ++f)
+      for (int c = 0; c < channels; ++c) block.push_back(static_cast<float>(sample_at(f, c)));
+    appendFloat32LE(bytes, block.data(), block.size());
+  }
   core::writeFileAtomically(path, [&bytes](std::ostream& out) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   });
+}
+
+}  // namespace
+
+void writeWavFloat(const std::string& path, const AudioBuffer& audio) {
+  if (audio.channels < 1 || audio.channels > 1024)
+    throw core::InputError(path, "cannot write " + std::to_string(audio.channels) + " channels");
+  if (audio.samples.size() % static_cast<size_t>(audio.channels) != 0)
+    throw core::InputError(path, "cannot write: the sample count is zero or not a whole number of frames");
+  const auto channels = static_cast<std::size_t>(audio.channels);
+  writeFloatSamples(path, audio.channels, audio.samples.size() / channels, audio.sample_rate_hz,
+                    [&](std::size_t f, int c) { return audio.samples[f * channels + static_cast<std::size_t>(c)]; });
+}
+
+void writeWavFloat(const std::string& path, const std::vector<std::vector<double>>& channels, double sample_rate_hz) {
+  for (const std::vector<double>& c : channels)
+    if (c.size() != channels.front().size()) throw core::InputError(path, "cannot write channels of different lengths");
+  writeFloatSamples(path, static_cast<int>(std::min<std::size_t>(channels.size(), 1025)),
+                    channels.empty() ? 0 : channels.front().size(), sample_rate_hz,
+                    [&](std::size_t f, int c) { return channels[static_cast<std::size_t>(c)][f]; });
 }
 
 AudioReader::AudioReader(const std::string& path) : path_(path) {

@@ -463,18 +463,9 @@ Runner addIrCommand(CLI::App& app, CommonOptions& common) {
                     [&](const std::string& f) { writeDirectionPlot(f, names, sim.listeners, room.listeners); });
     }
     written.write(wav, [&](const std::string& f) { audio::writeWavFloat(f, buffer); });
-    for (std::size_t l = 0; l < spatial_irs.size(); ++l)
-      written.write(spatial_files[l], [&](const std::string& f) {
-        audio::AudioBuffer out;
-        out.sample_rate_hz = room.output.sample_rate_hz;
-        out.channels = static_cast<int>(spatial_irs[l].size());
-        out.samples.assign(static_cast<std::size_t>(frames) * static_cast<std::size_t>(out.channels), 0.0);
-        for (int c = 0; c < out.channels; ++c)
-          for (long fr = 0; fr < frames; ++fr)
-            out.samples[static_cast<std::size_t>(fr) * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] =
-                spatial_irs[l][static_cast<std::size_t>(c)][static_cast<std::size_t>(fr)];
-        audio::writeWavFloat(f, out);
-      });
+    written.writeEach(spatial_files, [&](std::size_t l, const std::string& f) {
+      audio::writeWavFloat(f, spatial_irs[l], room.output.sample_rate_hz);
+    });
     written.write(side_csv, [&](const std::string& f) { writeHistogramCsv(f, room, sim); });
     side["timing_s"]["total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     written.write(side_json, [&](const std::string& f) {

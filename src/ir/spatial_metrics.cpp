@@ -62,22 +62,6 @@ BandPair splitPair(const std::vector<double>& a, const std::vector<double>& b, d
 
 long samples(double seconds, double fs) { return std::lround(seconds * fs); }
 
-// max over |τ| ≤ max_lag of |Σ_{i∈[from,to)} l[i]·r[i+τ]| / √(Σ l²·Σ r²) (r taken as 0 outside the record).
-double iacc(const std::vector<double>& l, const std::vector<double>& r, long from, long to, long max_lag) {
-  double el = 0.0, er = 0.0;
-  for (long i = from; i < to; ++i) el += l[static_cast<std::size_t>(i)] * l[static_cast<std::size_t>(i)], er += r[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i)];
-  if (!(el > 0.0 && er > 0.0)) return kNaN;
-  const long n = static_cast<long>(r.size());
-  double best = 0.0;
-  for (long tau = -max_lag; tau <= max_lag; ++tau) {
-    double c = 0.0;
-    for (long i = std::max(from, -tau); i < std::min(to, n - tau); ++i)
-      c += l[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i + tau)];
-    best = std::max(best, std::abs(c));
-  }
-  return best / std::sqrt(el * er);
-}
-
 }  // namespace
 
 std::vector<SpatialBandMetrics> lateralFractions(const std::vector<double>& w, const std::vector<double>& y,
@@ -118,11 +102,49 @@ std::vector<SpatialBandMetrics> interauralCrossCorrelation(const std::vector<dou
     const auto& pr = p.b[static_cast<std::size_t>(b)];
     const long end = static_cast<long>(pl.size());
     if (!p.measurable[static_cast<std::size_t>(b)] || n80 > end) return;
-    out[static_cast<std::size_t>(b)].iacc_e = iacc(pl, pr, p.start[static_cast<std::size_t>(b)], n80, max_lag);
+    out[static_cast<std::size_t>(b)].iacc_e = windowIacc(pl, pr, p.start[static_cast<std::size_t>(b)], n80, max_lag);
     const long late_end = std::min(end, p.onset + samples(0.750, p.fs));
-    if (late_end - n80 >= samples(0.010, p.fs)) out[static_cast<std::size_t>(b)].iacc_l = iacc(pl, pr, n80, late_end, max_lag);
+    if (late_end - n80 >= samples(0.010, p.fs)) out[static_cast<std::size_t>(b)].iacc_l = windowIacc(pl, pr, n80, late_end, max_lag);
   });
   return out;
+}
+
+// The lags go in groups of kLags, each lag's sum in its own accumulator, over i in increasing order as one
+// lag alone would sum it: the group's sums run side by side instead of one long chain of dependent adds.
+double windowIacc(const std::vector<double>& l, const std::vector<double>& r, long from, long to, long max_lag) {
+  DIFFRAY_CHECK(0 <= from && from <= to && static_cast<std::size_t>(to) <= l.size() && l.size() == r.size());
+  double el = 0.0, er = 0.0;
+  for (long i = from; i < to; ++i) el += l[static_cast<std::size_t>(i)] * l[static_cast<std::size_t>(i)], er += r[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i)];
+  if (!(el > 0.0 && er > 0.0)) return kNaN;
+  constexpr long kLags = 8;
+  const long n = static_cast<long>(r.size());
+  const double* pl = l.data();
+  const double* pr = r.data();
+  double best = 0.0;
+  for (long tau0 = -max_lag; tau0 <= max_lag; tau0 += kLags) {
+    const long lags = std::min(kLags, max_lag - tau0 + 1);
+    // Lag tau0 + k sums i ∈ [begin(k), end(k)); every lag of the group holds [mid_lo, mid_hi).
+    const auto begin = [&](long k) { return std::max(from, -(tau0 + k)); };
+    const auto end = [&](long k) { return std::min(to, n - (tau0 + k)); };
+    const long mid_lo = begin(0), mid_hi = std::max(mid_lo, end(lags - 1));
+    double c[kLags] = {};
+    for (long k = 0; k < lags; ++k)
+      for (long i = begin(k); i < std::min(mid_lo, end(k)); ++i) c[k] += pl[i] * pr[i + tau0 + k];
+    if (lags == kLags)
+      for (long i = mid_lo; i < mid_hi; ++i) {
+        const double li = pl[i];
+        const double* ri = pr + i + tau0;
+        for (long k = 0; k < kLags; ++k) c[k] += li * ri[k];
+      }
+    else
+      for (long i = mid_lo; i < mid_hi; ++i)
+        for (long k = 0; k < lags; ++k) c[k] += pl[i] * pr[i + tau0 + k];
+    for (long k = 0; k < lags; ++k) {
+      for (long i = std::max(mid_hi, begin(k)); i < end(k); ++i) c[k] += pl[i] * pr[i + tau0 + k];
+      best = std::max(best, std::abs(c[k]));
+    }
+  }
+  return best / std::sqrt(el * er);
 }
 
 double bandAverage(const core::Bands& bands, const std::vector<SpatialBandMetrics>& metrics,

@@ -1,6 +1,7 @@
 #include "diffray/ir/spatial_synthesis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <functional>
@@ -65,25 +66,41 @@ core::Vec3 uniformDirection(core::Rng& rng) {
   return {s * std::cos(phi), s * std::sin(phi), z};
 }
 
-/// One band of the traced part as the spatial syntheses render it: each of W's Diracs (its sample) with a
-/// direction in the listener's frame and an amplitude.
-struct BandDiracs {
+/// The traced part's Diracs (W's, from the plan) with the draws the bands share: each Dirac's sample and
+/// histogram bin, the uniform that decides whether it is directional in a band, and its diffuse direction.
+struct DiracDraws {
   std::vector<long> at;
-  std::vector<core::Vec3> dir;
-  std::vector<double> amp;
+  std::vector<std::size_t> bin_of;
+  std::vector<double> pick;
+  std::vector<core::Vec3> diffuse;  ///< world coordinates
 };
 
-/// Writes the weighted sequences (the response's length, zero on entry) of every output for one band: it
-/// may assign or add samples.
-using RenderBand = std::function<void(const BandDiracs&, std::vector<std::vector<double>>&)>;
+DiracDraws drawDiracs(const detail::SynthesisPlan& plan, std::uint64_t seed) {
+  DiracDraws d;
+  const std::size_t bins = plan.bin_start.size() - 1;
+  for (std::size_t i = 0; i < bins; ++i)
+    for (long s = plan.bin_start[i]; s < plan.bin_start[i + 1]; ++s)
+      if (plan.diracs[static_cast<std::size_t>(s)] != 0.0) d.at.push_back(s), d.bin_of.push_back(i);
+  core::Rng rng(seed, kStreamDirections);
+  d.pick.resize(d.at.size());
+  d.diffuse.resize(d.at.size());
+  for (std::size_t q = 0; q < d.at.size(); ++q) d.pick[q] = rng.uniform(), d.diffuse[q] = uniformDirection(rng);
+  return d;
+}
 
 /// The `outputs` signals, each the inverse of its spectrum `direct[o]` (all bins; the arrivals, kept whole)
 /// plus its traced part, silent before plan.quiet like W's. The traced part: per band (in parallel, each
-/// with its thread's FFT and buffers; summed in band order, so the same samples for any thread count), W's
-/// Diracs with their directions and amplitudes (below), rendered by `render` into one sequence per output,
-/// each made into a band part as synthesis.cpp makes W's (filtered, back to the response's length, its
-/// spectrum on the band's bins: the last two steps by band_refilter.h) and turned as W's traced part was.
-/// The outputs go back to time in parallel, each alone.
+/// with its thread's FFT; summed in band order, so the same samples for any thread count), W's Diracs with
+/// their directions and amplitudes (below), placed by `renderer` into one sequence per output (built in the
+/// FFT's own input, one output at a time), each made into a band part as synthesis.cpp makes W's
+/// (filtered, back to the response's length, its spectrum on the band's bins: the last two steps by
+/// band_refilter.h) and turned as W's traced part was. The outputs go back to time in parallel, each alone.
+///
+/// Renderer: `Key key(const core::Vec3& d) const` prepares a direction in the listener's frame (once per
+/// Dirac for the diffuse directions, shared by the bands; once per band and bin for the energy vector's),
+/// `void place(const Key&, double amp, long at, std::size_t output, double* x, std::size_t n) const` writes
+/// a Dirac of amplitude amp at sample `at` into output `output`'s sequence x (n samples; it may assign or
+/// add); it is called from several threads at once.
 //
 // Directions: with probability r_E the band's energy vector's direction u around the Dirac's time, otherwise
 // the Dirac's diffuse direction; one uniform and one diffuse direction per Dirac, shared by the bands, so
@@ -98,36 +115,33 @@ using RenderBand = std::function<void(const BandDiracs&, std::vector<std::vector
 // hence the factor √(W/(diag + r·(W − diag))), 1 when r = 1 (an output is then W seen from u). The diffuse
 // Diracs (independent directions: no cross terms on average) take one gain per window, √(W/Σ d²·unit), so
 // that they hold W's energy on average without W's tail.
+template <class Renderer>
 std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, const detail::SynthesisPlan& plan,
                                                const std::vector<BandGains>& gains, std::uint64_t seed,
                                                const std::function<core::Vec3(const core::Vec3&)>& local,
                                                const std::vector<std::vector<std::complex<double>>>& direct,
-                                               const RenderBand& render) {
+                                               const Renderer& renderer) {
+  using Key = typename Renderer::Key;
   const std::size_t n = static_cast<std::size_t>(plan.samples), outputs = direct.size();
-  // Per thread: an FFT of the plan's length and one sequence per output, zeroed again after each use.
+  // Per thread: an FFT of the plan's length, its input zero between the bands' uses.
   struct Workspace {
     RealFft fft;
-    std::vector<std::vector<double>> sequences;
-    Workspace(int m, std::size_t count, std::size_t samples) : fft(m), sequences(count, std::vector<double>(samples, 0.0)) {}
+    explicit Workspace(int m) : fft(m) { std::fill(fft.input(), fft.input() + m, 0.0); }
   };
-  tbb::enumerable_thread_specific<Workspace> workspaces(plan.fft_size, plan.gains.empty() ? std::size_t{0} : outputs, n);
+  tbb::enumerable_thread_specific<Workspace> workspaces(plan.fft_size);
   const std::size_t nbands = std::min(static_cast<std::size_t>(response.bands.size()), plan.gains.size());
   std::vector<std::vector<std::vector<std::complex<double>>>> parts(nbands);  // [band][output][band bin]
   if (nbands > 0) {
-    std::vector<long> at;
-    std::vector<std::size_t> bin_of;
+    const DiracDraws draws = drawDiracs(plan, seed);
+    const std::vector<long>& at = draws.at;
+    const std::vector<std::size_t>& bin_of = draws.bin_of;
     const std::size_t bins = plan.bin_start.size() - 1;
-    for (std::size_t i = 0; i < bins; ++i)
-      for (long s = plan.bin_start[i]; s < plan.bin_start[i + 1]; ++s)
-        if (plan.diracs[static_cast<std::size_t>(s)] != 0.0) at.push_back(s), bin_of.push_back(i);
-    core::Rng rng(seed, kStreamDirections);
-    std::vector<double> pick(at.size());
-    std::vector<core::Vec3> diffuse(at.size());
-    for (std::size_t q = 0; q < at.size(); ++q) pick[q] = rng.uniform(), diffuse[q] = uniformDirection(rng);
+    std::vector<Key> diffuse_keys(at.size());
+    tbb::parallel_for(std::size_t{0}, at.size(), [&](std::size_t q) { diffuse_keys[q] = renderer.key(local(draws.diffuse[q])); });
     const std::vector<std::complex<double>> window = detail::truncationWindowSpectrum(plan.fft_size, plan.samples);
     DIFFRAY_CHECK(plan.band_energy.size() >= nbands);
     tbb::parallel_for(std::size_t{0}, nbands, [&](std::size_t band) {
-      Workspace& ws = workspaces.local();
+      RealFft& fft = workspaces.local().fft;
       const BandGains& bg = gains[band];
       const BandDirections dirs = bandDirections(response, static_cast<int>(band), static_cast<int>(bins));
       const std::vector<double>& g = plan.gains[band];
@@ -138,7 +152,7 @@ std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, c
       std::vector<double> diag(bins, 0.0), count(bins, 0.0);
       double unit = 0.0;  // the energy of a unit Dirac through the band filter, (2/m)·Σ W_b²
       for (double w : bg.w) unit += w * w;
-      unit *= 2.0 / ws.fft.size();
+      unit *= 2.0 / fft.size();
       for (std::size_t q = 0; q < at.size(); ++q)
         if (at[q] >= plan.quiet) {
           const double d = plan.diracs[static_cast<std::size_t>(at[q])], a = g[bin_of[q]] * d;
@@ -155,46 +169,50 @@ std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, c
         const double mixed = ds + dirs.r[i] * (ws_sum - ds);
         if (mixed > 0.0) f_directional[i] = std::sqrt(ws_sum / mixed);
       }
-      BandDiracs d;
-      d.at = at;
-      d.dir.resize(at.size());
-      d.amp.resize(at.size());
+      // Each bin's energy-vector direction, prepared where a Dirac can take it (r > 0).
+      std::vector<Key> toward(bins);
+      for (std::size_t i = 0; i < bins; ++i)
+        if (dirs.r[i] > 0.0) toward[i] = renderer.key(local(dirs.u[i]));
+      std::vector<const Key*> key(at.size());
+      std::vector<double> amp(at.size());
       for (std::size_t q = 0; q < at.size(); ++q) {
         const std::size_t i = bin_of[q];
-        const bool directional = pick[q] < dirs.r[i];
-        d.dir[q] = local(directional ? dirs.u[i] : diffuse[q]);
-        d.amp[q] = (directional ? g[i] * f_directional[i] : h_diffuse[i]) * plan.diracs[static_cast<std::size_t>(at[q])];
+        const bool directional = draws.pick[q] < dirs.r[i];
+        key[q] = directional ? &toward[i] : &diffuse_keys[q];
+        amp[q] = (directional ? g[i] * f_directional[i] : h_diffuse[i]) * plan.diracs[static_cast<std::size_t>(at[q])];
       }
-      render(d, ws.sequences);
       // Each output's band spectrum, made a band part as W's was (back to the response's length, forward
       // again) on the band's bins alone (band_refilter.h: the same spectrum to rounding).
       const int len = static_cast<int>(bg.w.size());
-      detail::BandRefilter refilter(window, ws.fft.size(), bg.first, len);
+      detail::BandRefilter refilter(window, fft.size(), bg.first, len);
       std::vector<std::complex<double>> spectrum(bg.w.size());
       parts[band].assign(outputs, std::vector<std::complex<double>>(bg.w.size()));
+      double* x = fft.input();
+      const std::complex<double>* all = fft.spectrum() + bg.first;
       for (std::size_t o = 0; o < outputs; ++o) {
-        std::vector<double>& x = ws.sequences[o];
-        ws.fft.forwardBins(x.data(), x.size(), bg.first, len, spectrum.data());
-        std::fill(x.begin(), x.end(), 0.0);
-        for (std::size_t j = 0; j < bg.w.size(); ++j) spectrum[j] = bg.w[j] * spectrum[j];
+        for (std::size_t q = 0; q < at.size(); ++q) renderer.place(*key[q], amp[q], at[q], o, x, n);
+        fft.forwardInput();
+        std::fill(x, x + n, 0.0);
+        for (std::size_t j = 0; j < bg.w.size(); ++j) spectrum[j] = bg.w[j] * all[j];
         refilter.apply(spectrum.data(), parts[band][o].data());
       }
     });
   }
   std::vector<std::vector<double>> out(outputs);
   tbb::parallel_for(std::size_t{0}, outputs, [&](std::size_t o) {
-    RealFft& fft = workspaces.local().fft;
+    RealFft& fft = workspaces.local().fft;  // its input is free now: every band is done
     fft.inverse(direct[o], plan.samples, out[o]);
     if (nbands == 0) return;
-    std::vector<std::complex<double>> sum(static_cast<std::size_t>(fft.bins()), {0.0, 0.0});
+    std::complex<double>* sum = fft.spectrum();
+    std::fill(sum, sum + fft.bins(), std::complex<double>(0.0, 0.0));
     for (std::size_t b = 0; b < nbands; ++b) {
       const std::complex<double> turn = b < plan.traced_turn.size() ? plan.traced_turn[b] : std::complex<double>(1.0, 0.0);
       for (std::size_t j = 0; j < parts[b][o].size(); ++j) sum[static_cast<std::size_t>(gains[b].first) + j] += turn * parts[b][o][j];
     }
-    std::vector<double> traced;
-    fft.inverse(sum, plan.samples, traced);
-    std::fill(traced.begin(), traced.begin() + std::min(plan.quiet, plan.samples), 0.0);
-    for (std::size_t s = 0; s < n; ++s) out[o][s] += traced[s];
+    fft.inverseSpectrum();
+    const double* traced = fft.input();
+    const double scale = 1.0 / fft.size();
+    for (std::size_t s = static_cast<std::size_t>(std::min(plan.quiet, plan.samples)); s < n; ++s) out[o][s] += traced[s] * scale;
   });
   return out;
 }
@@ -202,6 +220,57 @@ std::vector<std::vector<double>> tracedOutputs(const EnergyResponse& response, c
 core::Vec3 localOf(const core::Vec3& w, const core::Vec3& forward, const core::Vec3& left, const core::Vec3& up) {
   return {w.dot(forward), w.dot(left), w.dot(up)};
 }
+
+// Placing HRIRs is most of the binaural synthesis' own work. On x86-64 addHrir is also compiled for AVX2
+// (four doubles a step against SSE2's two), the copy picked when the program loads where the CPU has it:
+// the same product and sum per sample in either (AVX2 brings no fused multiply-add), so the same samples.
+// Not under the sanitizers, whose start-up the load-time pick would precede.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#define DIFFRAY_NO_CLONES
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define DIFFRAY_NO_CLONES
+#endif
+#if defined(__x86_64__) && !defined(DIFFRAY_NO_CLONES)
+#define DIFFRAY_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#else
+#define DIFFRAY_AVX2_CLONE
+#endif
+
+/// Adds h (taps values, an HRIR) at sample s, scaled, into x (n samples; cut at its end).
+DIFFRAY_AVX2_CLONE void addHrir(double* x, std::size_t n, long s, const float* h, std::size_t taps, double scale) {
+  const std::size_t from = static_cast<std::size_t>(s), count = std::min(taps, n - from);
+  double* to = x + from;
+  for (std::size_t k = 0; k < count; ++k) to[k] += scale * static_cast<double>(h[k]);
+}
+
+/// tracedOutputs' renderer of the Ambisonic channels 1 … (order + 1)² − 1 (output o is channel o + 1): a
+/// direction's key is its spherical harmonics; a Dirac sets its sample to amp·Y (no two Diracs share one).
+struct AmbisonicRenderer {
+  using Key = std::array<double, spatial::ambisonicChannels(3)>;
+  int order;
+  Key key(const core::Vec3& d) const {
+    Key y{};
+    spatial::realSphericalHarmonicsSn3d(order, d, y.data());
+    return y;
+  }
+  void place(const Key& y, double amp, long at, std::size_t output, double* x, std::size_t) const {
+    x[at] = amp * y[output + 1];
+  }
+};
+
+/// tracedOutputs' renderer of the two ears (output 0 left, 1 right): a direction's key is the measured
+/// direction nearest it; a Dirac adds its HRIR for that ear, scaled by amp, from its sample on.
+struct BinauralRenderer {
+  using Key = int;
+  const spatial::Hrtf& hrtf;
+  Key key(const core::Vec3& d) const { return hrtf.nearest(d); }
+  void place(Key i, double amp, long at, std::size_t output, double* x, std::size_t n) const {
+    addHrir(x, n, at, hrtf.ear(i, static_cast<int>(output)), static_cast<std::size_t>(hrtf.taps()), amp);
+  }
+};
 
 }  // namespace
 
@@ -221,43 +290,50 @@ std::vector<std::vector<double>> synthesizeAmbisonic(const EnergyResponse& respo
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
-  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}). The channels
-  // in one contiguous block per thread, each block summing its channels in arrival order as one thread
-  // would: the same spectra for any thread count.
-  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(static_cast<std::size_t>(m / 2 + 1)));  // [channel − 1][bin]
-  const std::size_t blocks = std::min(channels - 1, static_cast<std::size_t>(std::max(1, core::ThreadLimit::current())));
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t block) {
-    const std::size_t ch_begin = 1 + block * (channels - 1) / blocks, ch_end = 1 + (block + 1) * (channels - 1) / blocks;
-    std::vector<double> y(channels);
-    std::vector<std::complex<double>> pulse;  // the arrival's pulse on one band's bins
-    for (std::size_t a = 0; a < response.arrivals.size() && a < plan.arrival_coefficients.size(); ++a) {
-      const Arrival& arrival = response.arrivals[a];
-      if (!(arrival.direction.norm() > 0.0)) continue;
-      spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data());
-      const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
-      const std::complex<double> step = std::polar(1.0, phase_step);
-      for (int b = 0; b < nb; ++b) {
-        const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
+  // Arrivals: Y_c(d) times the arrival's pulse in W (its band coefficients on W_b·e^{−2πifτ}), each channel's
+  // bins summed over the arrivals in order (and each arrival's bands in order). In blocks of bins, so that a
+  // block of every channel stays in cache while all the arrivals are added to it; each band's e^{−2πifτ}
+  // runs by one recurrence from its first bin, carried from block to block: the same spectra as arrival
+  // after arrival over whole bands.
+  const std::size_t bins = static_cast<std::size_t>(m / 2 + 1), nbands = static_cast<std::size_t>(nb);
+  std::vector<std::vector<std::complex<double>>> arrivals(channels - 1, std::vector<std::complex<double>>(bins));  // [channel − 1][bin]
+  const std::size_t count = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
+  std::vector<std::size_t> placed;             // the arrivals with a direction
+  std::vector<double> y;                       // [placed][channel]
+  std::vector<std::complex<double>> step, z;   // [placed], [placed][band]: e^{−2πi·τ·fs/m}, the band's next factor
+  for (std::size_t a = 0; a < count; ++a) {
+    const Arrival& arrival = response.arrivals[a];
+    if (!(arrival.direction.norm() > 0.0)) continue;
+    placed.push_back(a);
+    y.resize(placed.size() * channels);
+    spatial::realSphericalHarmonicsSn3d(order, local(arrival.direction), y.data() + (placed.size() - 1) * channels);
+    const double phase_step = -core::kTwoPi * arrival.delay_s * sample_rate_hz / m;
+    step.push_back(std::polar(1.0, phase_step));
+    for (const BandGains& g : gains) z.push_back(std::polar(1.0, phase_step * g.first));
+  }
+  constexpr std::size_t kBlockBins = 512;
+  std::vector<std::complex<double>> pulse(kBlockBins);  // one arrival's pulse on one band's bins in the block
+  for (std::size_t j0 = 0; j0 < bins; j0 += kBlockBins) {
+    const std::size_t j1 = std::min(bins, j0 + kBlockBins);
+    for (std::size_t p = 0; p < placed.size(); ++p)
+      for (std::size_t b = 0; b < nbands; ++b) {
+        const std::complex<double> c = plan.arrival_coefficients[placed[p]][b];
         if (c == std::complex<double>(0.0, 0.0)) continue;
-        const BandGains& g = gains[static_cast<std::size_t>(b)];
-        pulse.resize(g.w.size());
-        std::complex<double> z = std::polar(1.0, phase_step * g.first);
-        for (std::size_t j = 0; j < g.w.size(); ++j, z *= step) pulse[j] = c * g.w[j] * z;
-        for (std::size_t ch = ch_begin; ch < ch_end; ++ch) {
-          std::complex<double>* to = arrivals[ch - 1].data() + g.first;
-          for (std::size_t j = 0; j < g.w.size(); ++j) to[j] += y[ch] * pulse[j];
+        const BandGains& g = gains[b];
+        const std::size_t first = static_cast<std::size_t>(g.first);
+        const std::size_t lo = std::max(j0, first), hi = std::min(j1, first + g.w.size());
+        if (lo >= hi) continue;
+        std::complex<double>& zb = z[p * nbands + b];
+        for (std::size_t j = lo; j < hi; ++j, zb *= step[p]) pulse[j - lo] = c * g.w[j - first] * zb;
+        for (std::size_t ch = 1; ch < channels; ++ch) {
+          std::complex<double>* to = arrivals[ch - 1].data();
+          const double yc = y[p * channels + ch];
+          for (std::size_t j = lo; j < hi; ++j) to[j] += yc * pulse[j - lo];
         }
       }
-    }
-  });
+  }
   std::vector<std::vector<double>> rest =
-      tracedOutputs(response, plan, gains, seed, local, arrivals, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
-        std::vector<double> ys(channels);
-        for (std::size_t q = 0; q < d.at.size(); ++q) {
-          spatial::realSphericalHarmonicsSn3d(order, d.dir[q], ys.data());
-          for (std::size_t ch = 1; ch < channels; ++ch) seq[ch - 1][static_cast<std::size_t>(d.at[q])] = d.amp[q] * ys[ch];
-        }
-      });
+      tracedOutputs(response, plan, gains, seed, local, arrivals, AmbisonicRenderer{order});
   for (std::size_t ch = 1; ch < channels; ++ch) out[ch] = std::move(rest[ch - 1]);
   return out;
 }
@@ -280,16 +356,11 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   const std::function<core::Vec3(const core::Vec3&)> local = [&](const core::Vec3& w) { return localOf(w, forward, left, up); };
   std::vector<BandGains> gains;
   for (int b = 0; b < nb; ++b) gains.push_back(filter.gains(b, m));
-  // Adds h (the HRIR) at sample s, scaled, into x (cut at the response's end).
-  const auto place = [&](std::vector<double>& x, long s, const float* h, double scale) {
-    const std::size_t from = static_cast<std::size_t>(s), count = std::min(taps, n - from);
-    double* to = x.data() + from;
-    for (std::size_t k = 0; k < count; ++k) to[k] += scale * static_cast<double>(h[k]);
-  };
   // Arrivals: each band's pulse c·W_b·e^{−2πifτ} through the HRIR of the arrival's direction, at the sample
   // nearest its delay: per band and ear, the HRIRs placed with weights Re(c) and Im(c) in two sequences X_R,
-  // X_I, and the band part W_b·(X_R + i·X_I) (on the positive frequencies, c·H·e^{−2πifτ}). The bands in
-  // parallel (each thread with its FFT and two sequences, zeroed again after use), added in band order.
+  // X_I (one after the other in the FFT's input, zeroed again after use), and the band part W_b·(X_R + i·X_I)
+  // (on the positive frequencies, c·H·e^{−2πifτ}). The bands in parallel (each thread with its FFT), added
+  // in band order.
   // Each arrival's HRIR pair and sample, once (−1: beyond the response).
   const std::size_t arrivals = std::min(response.arrivals.size(), plan.arrival_coefficients.size());
   std::vector<int> measured(arrivals, 0);
@@ -302,32 +373,33 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
   }
   struct Workspace {
     RealFft fft;
-    std::vector<double> xr, xi;
-    Workspace(int size, std::size_t samples) : fft(size), xr(samples, 0.0), xi(samples, 0.0) {}
+    explicit Workspace(int size) : fft(size) { std::fill(fft.input(), fft.input() + size, 0.0); }
   };
-  tbb::enumerable_thread_specific<Workspace> workspaces(m, n);
+  tbb::enumerable_thread_specific<Workspace> workspaces(m);
   std::vector<std::vector<std::vector<std::complex<double>>>> band_ears(static_cast<std::size_t>(nb));  // [band][side][band bin]
   tbb::parallel_for(0, nb, [&](int b) {
-    Workspace& ws = workspaces.local();
+    RealFft& fft = workspaces.local().fft;
     const BandGains& g = gains[static_cast<std::size_t>(b)];
-    const int len = static_cast<int>(g.w.size());
     std::vector<std::complex<double>> spectrum_r(g.w.size()), spectrum_i(g.w.size());
     band_ears[static_cast<std::size_t>(b)].resize(2);
-    for (int side = 0; side < 2; ++side) {
-      bool any = false;
+    bool any = false;
+    for (std::size_t a = 0; a < arrivals; ++a)
+      any = any || (plan.arrival_coefficients[a][static_cast<std::size_t>(b)] != std::complex<double>(0.0, 0.0) && sample[a] >= 0);
+    if (!any) return;
+    // The band's spectrum of the HRIRs placed with weights part(c) (the real or the imaginary part).
+    const auto transform = [&](int side, double (*part)(const std::complex<double>&), std::complex<double>* out) {
       for (std::size_t a = 0; a < arrivals; ++a) {
         const std::complex<double> c = plan.arrival_coefficients[a][static_cast<std::size_t>(b)];
         if (c == std::complex<double>(0.0, 0.0) || sample[a] < 0) continue;
-        const float* h = hrtf.ear(measured[a], side);
-        place(ws.xr, sample[a], h, c.real());
-        place(ws.xi, sample[a], h, c.imag());
-        any = true;
+        addHrir(fft.input(), n, sample[a], hrtf.ear(measured[a], side), taps, part(c));
       }
-      if (!any) continue;
-      ws.fft.forwardBins(ws.xr.data(), n, g.first, len, spectrum_r.data());
-      ws.fft.forwardBins(ws.xi.data(), n, g.first, len, spectrum_i.data());
-      std::fill(ws.xr.begin(), ws.xr.end(), 0.0);
-      std::fill(ws.xi.begin(), ws.xi.end(), 0.0);
+      fft.forwardInput();
+      std::fill(fft.input(), fft.input() + n, 0.0);
+      std::copy(fft.spectrum() + g.first, fft.spectrum() + g.first + static_cast<long>(g.w.size()), out);
+    };
+    for (int side = 0; side < 2; ++side) {
+      transform(side, [](const std::complex<double>& c) { return c.real(); }, spectrum_r.data());
+      transform(side, [](const std::complex<double>& c) { return c.imag(); }, spectrum_i.data());
       auto& part = band_ears[static_cast<std::size_t>(b)][static_cast<std::size_t>(side)];
       part.resize(g.w.size());
       for (std::size_t j = 0; j < g.w.size(); ++j) part[j] = g.w[j] * (spectrum_r[j] + std::complex<double>(0.0, 1.0) * spectrum_i[j]);
@@ -339,12 +411,7 @@ std::vector<std::vector<double>> synthesizeBinaural(const EnergyResponse& respon
       const auto& part = band_ears[static_cast<std::size_t>(b)][side];
       for (std::size_t j = 0; j < part.size(); ++j) ears[side][static_cast<std::size_t>(gains[static_cast<std::size_t>(b)].first) + j] += part[j];
     }
-  return tracedOutputs(response, plan, gains, seed, local, ears, [&](const BandDiracs& d, std::vector<std::vector<double>>& seq) {
-    for (std::size_t q = 0; q < d.at.size(); ++q) {
-      const int i = hrtf.nearest(d.dir[q]);
-      for (int side = 0; side < 2; ++side) place(seq[static_cast<std::size_t>(side)], d.at[q], hrtf.ear(i, side), d.amp[q]);
-    }
-  });
+  return tracedOutputs(response, plan, gains, seed, local, ears, BinauralRenderer{hrtf});
 }
 
 }  // namespace diffray::ir

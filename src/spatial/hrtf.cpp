@@ -130,9 +130,26 @@ Hrtf Hrtf::load(const std::string& path_in, double sample_rate_hz) {
     }
     irs.push_back(std::move(ir));
   }
-  if (h.file_rate_hz_ != sample_rate_hz)  // each measurement alone (its own converter), in parallel
-    tbb::parallel_for(std::size_t{0}, irs.size(), [&](std::size_t m) {
-      irs[m] = dsp::resampleImpulseResponse(irs[m], 2, h.file_rate_hz_, sample_rate_hz);
+  // Resampled in groups of kResampleGroup measurements, each group one converter of 2·group channels (the
+  // groups in parallel): libsamplerate computes the filter's taps once per output sample for all the channels
+  // of a converter and then each channel as it would alone, so a group costs about a third less than its
+  // measurements one by one and gives the same samples.
+  constexpr std::size_t kResampleGroup = 4;
+  if (h.file_rate_hz_ != sample_rate_hz)
+    tbb::parallel_for(std::size_t{0}, (irs.size() + kResampleGroup - 1) / kResampleGroup, [&](std::size_t group) {
+      const std::size_t first = group * kResampleGroup, count = std::min(kResampleGroup, irs.size() - first);
+      std::vector<float> joined(2 * count * n_file);  // [frame][measurement][ear]
+      for (std::size_t k = 0; k < n_file; ++k)
+        for (std::size_t m = 0; m < count; ++m)
+          for (std::size_t r = 0; r < 2; ++r) joined[(k * count + m) * 2 + r] = irs[first + m][2 * k + r];
+      const std::vector<float> out = dsp::resampleImpulseResponse(joined, static_cast<int>(2 * count), h.file_rate_hz_, sample_rate_hz);
+      const std::size_t frames = out.size() / (2 * count);
+      for (std::size_t m = 0; m < count; ++m) {
+        std::vector<float>& ir = irs[first + m];
+        ir.assign(2 * frames, 0.0f);
+        for (std::size_t k = 0; k < frames; ++k)
+          for (std::size_t r = 0; r < 2; ++r) ir[2 * k + r] = out[(k * count + m) * 2 + r];
+      }
     });
   // The delay common to every HRIR (the measurement's distance, the converter's latency) is dropped, up to
   // 8 samples kept ahead of the earliest onset (a tap above 1 % of its HRIR's peak), so that a binaural

@@ -36,6 +36,9 @@ AudioBuffer readAudio(const std::string& path, std::string* warning = nullptr);
 /// samples or samples beyond the float range (checked before anything is written), for a sample rate or
 /// channel count a WAV cannot hold (1..1024 channels, a 32-bit byte rate), and when the file cannot be written.
 void writeWavFloat(const std::string& path, const AudioBuffer& audio);
+/// The same for channels held apart (channels[c][frame], all of one length), written without an
+/// interleaved copy of the samples; also refuses channels of different lengths.
+void writeWavFloat(const std::string& path, const std::vector<std::vector<double>>& channels, double sample_rate_hz);
 
 /// The largest float32 payload a WAV file holds: its RIFF and data chunk sizes are unsigned 32-bit fields,
 /// so frames·channels·4 bytes plus the header (a few dozen bytes; 1 KiB reserved) must stay below 4 GiB.

@@ -37,13 +37,18 @@ class RealFft {
   int bins() const { return n_ / 2 + 1; }  ///< spectrum length: k = 0 … n/2, frequency k·fs/n
   /// spectrum[k] = Σ_j x[j]·e^{−2πi·jk/n}, x zero-padded (or truncated) to n.
   void forward(const std::vector<double>& x, std::vector<std::complex<double>>& spectrum);
-  /// forward() of the `size` samples at x, keeping only bins first … first + count − 1 (written to out):
-  /// no vector touched beyond those, for callers that reuse their buffers.
-  void forwardBins(const double* x, std::size_t size, int first, int count, std::complex<double>* out);
   /// The inverse of forward (scaled by 1/n); returns the first `count` samples.
   std::vector<double> inverse(const std::vector<std::complex<double>>& spectrum, long count);
   /// The same into `out` (resized to count; no allocation once it has the capacity).
   void inverse(const std::vector<std::complex<double>>& spectrum, long count, std::vector<double>& out);
+  /// The transforms on the object's own buffers, for callers that build a signal or a spectrum in place
+  /// (no copy in or out): input() holds size() samples, spectrum() bins() values, both left as the last
+  /// transform left them. forwardInput(): spectrum() = the DFT of input(), input() kept.
+  /// inverseSpectrum(): input() = size() · the inverse of spectrum() (unscaled), spectrum() overwritten.
+  double* input() { return real_; }
+  std::complex<double>* spectrum();
+  void forwardInput();
+  void inverseSpectrum();
 
  private:
   int n_;

@@ -55,6 +55,12 @@ std::vector<SpatialBandMetrics> interauralCrossCorrelation(const std::vector<dou
                                                            const std::vector<double>& right,
                                                            double sample_rate_hz, const core::Bands& bands);
 
+/// The interaural cross-correlation coefficient of one window: the largest |Σ_{i∈[from,to)} l[i]·r[i+τ]| over
+/// |τ| ≤ max_lag, r taken as 0 outside its samples, over √(Σ l²·Σ r²) (both over the window); NaN when either
+/// ear is silent there. What interauralCrossCorrelation applies to each band and window. Needs
+/// 0 ≤ from ≤ to ≤ the length of l and r.
+double windowIacc(const std::vector<double>& l, const std::vector<double>& r, long from, long to, long max_lag);
+
 /// The mean of `figure` over the bands whose nominal centre lies in [lo_hz, hi_hz] (NaN if one is NaN or
 /// none lies there).
 double bandAverage(const core::Bands& bands, const std::vector<SpatialBandMetrics>& metrics,
