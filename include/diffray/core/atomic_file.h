@@ -24,7 +24,7 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 /// them all over their targets once every one is written. If the command fails before commit() (an
 /// exception unwinds this object), the staged files are removed and the targets are left as they were:
 /// a failed rerun keeps the previous run's outputs, and a first run leaves nothing. Not thread-safe (one
-// thread calls its members; writeEach runs its writers on TBB's pool).
+/// thread calls its members; writeEach runs its writers on TBB's pool).
 class OutputFiles {
  public:
   OutputFiles() = default;
