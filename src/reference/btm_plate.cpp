@@ -75,7 +75,8 @@ std::vector<EdgeFrame> edgeFrames(const BtmPlate& plate, const PlateFrame& f) {
   return frames;
 }
 
-GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const Vec3& source, const Vec3& receiver) {
+GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const std::vector<EdgeFrame>& edges,
+                              const Vec3& source, const Vec3& receiver) {
   for (int c = 0; c < 3; ++c) {
     core::requireFinite("source", source[c]);
     core::requireFinite("receiver", receiver[c]);
@@ -84,7 +85,6 @@ GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const 
   const double on_plane = 1e-12 * f.scale;
   if (std::abs(ds) <= on_plane && insidePolygon(plate, f, source)) throw core::InputError("source", "lies on the plate");
   if (std::abs(dr) <= on_plane && insidePolygon(plate, f, receiver)) throw core::InputError("receiver", "lies on the plate");
-  const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
   // How far the line from p to q, which crosses the plate's plane, passes beside the plate, as an angle: the
   // largest over the edges of π − |θq − θp| (azimuths about each edge, x into the plate). Positive where
   // the line crosses the plane beyond that edge, negative where it crosses the plate, 0 on an edge's line.
@@ -168,12 +168,12 @@ BtmPlateField btmPlateField(double wavenumber_rad_m, const BtmPlate& plate, cons
   core::requireFinite("wavenumber", wavenumber_rad_m);
   if (!(wavenumber_rad_m > 0.0)) throw core::InputError("wavenumber", "must be > 0, got " + std::to_string(wavenumber_rad_m));
   const PlateFrame f = checkPlate(plate);
-  const GeometricPaths paths = geometricPaths(plate, f, source, receiver);
+  const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
+  const GeometricPaths paths = geometricPaths(plate, f, edges, source, receiver);
   const double k = wavenumber_rad_m, wavelength = 2.0 * kPi / k;
   BtmPlateField u;
   u.direct = spherical(k, paths.direct);
   u.specular = spherical(k, paths.specular);
-  const std::vector<EdgeFrame> edges = edgeFrames(plate, f);
   for (const BtmNode& q : firstOrderNodes(edges, source, receiver, wavelength)) u.diffracted += std::polar(q.amplitude, -k * q.path_m);
   if (order >= 2) {
     const double scale = pairScale(f, source, receiver);

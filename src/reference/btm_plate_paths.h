@@ -31,13 +31,13 @@ std::vector<EdgeFrame> edgeFrames(const BtmPlate& plate, const PlateFrame& f);
 /// The geometric field at `receiver`: the direct wave and the specular image, each with weight 1 in its
 /// zone, ½ where its line grazes an edge (within kBtmOnBoundaryRad: that edge's first-order term is dropped
 /// there, btm_kernel.h, and the half wave keeps the total field continuous, as btmInfiniteWedgeField's) and
-/// 0 outside (the plate blocks the direct wave; the reflection point is off the plate). Throws when a point
-/// lies on the plate.
+/// 0 outside (the plate blocks the direct wave; the reflection point is off the plate); `edges` are the
+/// plate's edgeFrames. Throws when a point lies on the plate.
 struct GeometricPaths {
   GeometricWave direct, specular;
 };
-GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const core::Vec3& source,
-                              const core::Vec3& receiver);
+GeometricPaths geometricPaths(const BtmPlate& plate, const PlateFrame& f, const std::vector<EdgeFrame>& edges,
+                              const core::Vec3& source, const core::Vec3& receiver);
 
 /// The plate standing on the ground z = ground_z_m joined with its mirror image (btmPlateOnGroundField).
 /// Throws core::InputError when the plate does not stand on the ground so or a point is not above it.

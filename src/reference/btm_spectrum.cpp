@@ -79,7 +79,7 @@ std::vector<BtmPlateField> btmPlateSpectrum(const std::vector<double>& wavenumbe
   const auto addScene = [&](const BtmPlate& p, const Vec3& s) {
     Scene sc{p, checkPlate(p), {}, s};
     sc.edges = edgeFrames(p, sc.frame);
-    const GeometricPaths paths = geometricPaths(p, sc.frame, s, receiver);
+    const GeometricPaths paths = geometricPaths(p, sc.frame, sc.edges, s, receiver);
     if (paths.direct.weight > 0.0) waves.direct.push_back(paths.direct);
     if (paths.specular.weight > 0.0) waves.specular.push_back(paths.specular);
     scenes.push_back(sc);
