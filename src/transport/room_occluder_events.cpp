@@ -138,6 +138,8 @@ bool Tracer::scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s
     s.skip_next_score = nextEvent(acc, rng, s, k, n_in, s.skip_after_floor, false);
     s.floor_plane = floor_plane[k];
   }
+  double through = 1.0;
+  if (turnsBack(rng, s, k, n_in, through)) return true;
   double xi[4];
   for (double& v : xi) v = rng.uniform();
   if (s.has_qmc && s.diffractions == 0) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
@@ -147,7 +149,7 @@ bool Tracer::scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s
     return false;
   }
   const room::Occluder& o = opt.occluders->occluder(k);
-  double w = sc.weight;
+  double w = sc.weight * through;
   if (o.reflect) w *= 1.0 - room.materials[o.material].absorption[s.band];
   s.e[s.band] *= w;
   leaveOccluder(s, sc.dir, n_in);
@@ -169,6 +171,8 @@ bool Tracer::portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s,
   one.e[one.band] = s.e[one.band] * n;
   s.skip_next_score = nextEvent(acc, rng, one, k, n_in, s.skip_after_floor, true);
   s.floor_plane = floor_plane[k];
+  double through = 1.0;
+  if (turnsBack(rng, s, k, n_in, through)) return true;
   double xi[4];
   for (double& v : xi) v = rng.uniform();
   if (first) xi[0] = s.qmc[0], xi[1] = s.qmc[1];
@@ -179,10 +183,58 @@ bool Tracer::portalAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s,
     return false;
   }
   core::BandArray e = core::bandFill(0.0);
-  for (int i = 0; i < n; ++i) e[live[i]] = s.e[live[i]] * w[i];
+  for (int i = 0; i < n; ++i) e[live[i]] = s.e[live[i]] * w[i] * through;
   s.e = e;
   leaveOccluder(s, sc.dir, n_in);
   return true;
+}
+
+Tracer::OpeningFate Tracer::openingFate(core::FastRng& rng, const Path& s, int k) const {
+  OpeningFate f;
+  double carried = 0.0, total = 0.0;
+  for (int b = 0; b < bands; ++b) {
+    if (s.e[b] == 0.0) continue;
+    f.tau[b] = opt.occluders->transmission(k, b, s.dir);
+    carried += std::abs(s.e[b]) * f.tau[b];
+    total += std::abs(s.e[b]);
+  }
+  f.p_through = total > 0.0 ? carried / total : 1.0;
+  f.back = rng.uniform() >= f.p_through;
+  return f;
+}
+
+bool Tracer::turnsBack(core::FastRng& rng, Path& s, int k, const Vec3& n_in, double& through) const {
+  if (!opt.occluders->returnsEnergy(k)) return false;
+  const OpeningFate f = openingFate(rng, s, k);
+  if (f.back) {
+    comeBack(s, k, f, n_in);
+    return true;
+  }
+  through = 1.0 / f.p_through;
+  return false;
+}
+
+void Tracer::comeBack(Path& s, int k, const OpeningFate& f, const Vec3& n_in) const {
+  const core::BandArray& r = opt.occluders->surround(k);
+  const double p_back = 1.0 - f.p_through;
+  for (int b = 0; b < bands; ++b) s.e[b] *= (1.0 - f.tau[b]) * r[b] / p_back;
+  const Vec3 n = opt.occluders->occluder(k).normal;
+  s.dir -= 2.0 * s.dir.dot(n) * n;
+  s.pos += eps_m * n_in;  // n_in faces the side the path came from
+  s.specular_chain = false;
+  ++s.order;
+  s.skip_next_score = 0;
+  s.skip_after_floor = 0;
+}
+
+void Tracer::passOpening(core::FastRng& rng, Path& s, int k, const Vec3& n_in) const {
+  const OpeningFate f = openingFate(rng, s, k);
+  if (f.back) {
+    comeBack(s, k, f, n_in);
+    return;
+  }
+  for (int b = 0; b < bands; ++b) s.e[b] *= f.tau[b] / f.p_through;
+  s.pos -= eps_m * n_in;  // through, along the same direction
 }
 
 }  // namespace diffray::transport::detail

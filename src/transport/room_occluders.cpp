@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "diffray/core/error.h"
+#include "diffray/room/air.h"
 #include "diffray/wbsdf/edge_kernel.h"
 #include "diffray/wbsdf/microstructure.h"
 
@@ -56,7 +57,10 @@ RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_
   mask_.assign(room.mesh.triangleCount(), 0);
   for (const room::Occluder& o : room.occluders) {
     const int k = static_cast<int>(occluders_.size());
-    Entry e{o, {o.x, tableFor(o.x, shortest_wavelength_m)}, {o.y, tableFor(o.y, shortest_wavelength_m)}};
+    Entry e;
+    e.spec = o;
+    e.x = {o.x, tableFor(o.x, shortest_wavelength_m)};
+    e.y = {o.y, tableFor(o.y, shortest_wavelength_m)};
     occluders_.push_back(std::move(e));
     int found = 0;
     for (std::size_t t = 0; t < room.group_of_triangle.size(); ++t)
@@ -66,6 +70,17 @@ RoomOccluders::RoomOccluders(const room::Room& room, double shortest_wavelength_
         ++found;
       }
     if (found == 0) throw core::InternalError("occluder " + o.name + " has no triangles (group " + o.group + ")");
+  }
+  // Once every occluder's triangles are known (a surround is never another occluder's opening).
+  const double c = room::speedOfSound(room.air);
+  for (Entry& e : occluders_) {
+    e.surround = surroundReflectance(room, e.spec, of_triangle_);
+    for (int b = 0; b < room.bands.size(); ++b) e.returns = e.returns || e.surround[b] > 0.0;
+    if (!e.returns) continue;
+    auto length = [](const room::OccluderAxis& a) {
+      return a.kind == Kind::Opening ? (a.mirror_lo ? 2.0 : 1.0) * (a.hi_m - a.lo_m) : 0.0;
+    };
+    e.tau = OpeningTransmission(length(e.spec.x), length(e.spec.y), room.bands, c);
   }
 }
 

@@ -67,9 +67,14 @@ constexpr double kPilotBinS = 0.01;  ///< the pilot's histogram bins
 // alone, 10 ms bins, up to max_length_s): the energy still in flight in the room, whose level is read
 // where it first drops below −60 dB of its peak, or else extrapolated to −60 dB from a least-squares
 // line through its last 20 dB (a non-diffuse room's late decay is its slowest). NaN if no band decayed.
+// With the WBSDF's occluders, as the trace will have them: an opening that returns what it does not carry
+// lets a room behind it ring longer than an open door would.
 double pilotT60(const room::Room& room, const RoomGeometry& geometry, const RoomSimulation& sim, std::uint64_t seed,
-                std::uint64_t rays) {
+                std::uint64_t rays, const RoomOccluders* occluders, const RoomSimulationOptions& options) {
   RoomTraceOptions to;
+  to.occluders = occluders;
+  to.max_diffractions = options.max_diffractions;
+  to.portal = options.portal;
   to.rays = rays;
   to.seed = seed ^ 0x5eedf00dull;
   to.length_s = room.output.max_length_s;
@@ -206,7 +211,8 @@ RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions&
     // "auto": a pilot run measures the decay (Eyring misjudges non-diffuse rooms: a shoebox with an
     // absorbing floor and ceiling rings on between its hard walls for twice as long).
     const double per_ray = bouncesPerRay(room, room.output.max_length_s, sim.speed_of_sound_m_s);
-    sim.pilot_t60_s = pilotT60(room, geometry, sim, options.seed, static_cast<std::uint64_t>(pilotRays(per_ray)));
+    sim.pilot_t60_s = pilotT60(room, geometry, sim, options.seed, static_cast<std::uint64_t>(pilotRays(per_ray)),
+                              occluders.get(), options);
     const double decay_s = std::isfinite(sim.pilot_t60_s) ? sim.pilot_t60_s : 1.5 * sim.eyring_t60_s + direct;
     sim.length_s = std::min(room.output.max_length_s, decay_s + 0.05);
   }

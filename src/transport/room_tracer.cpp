@@ -262,6 +262,18 @@ void Tracer::follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
           continue;
         }
       }
+      // An opening that returns energy, after the path's WBSDF scatterings: through or back, per band.
+      if (opt.occluders) {
+        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0 && opt.occluders->returnsEnergy(k)) {
+          s.e = asBands(e, scale);
+          s.pos = pos, s.dir = dir, s.order = order, s.specular_chain = specular_chain;
+          passOpening(rng, s, k, n_in);
+          if (!roulette<0>(acc, rng, s.e, threshold)) return;
+          e = carried<NB>(s.e, scale);
+          pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
+          continue;
+        }
+      }
       if (materials.opening[m]) {  // a hole: go on as if nothing were there
         pos -= eps_m * n_in;
         continue;

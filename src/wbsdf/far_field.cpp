@@ -33,7 +33,48 @@ double envelope(double w) { return std::abs(w) <= kCore ? 1.0 : 1.0 / (core::kPi
 // |w| in [a, b] (kCore ≤ a < b) with density ∝ 1/w², from a uniform: 1/w linear in ξ.
 double tailDraw(double a, double b, double xi) { return 1.0 / (1.0 / a - xi * (1.0 / a - 1.0 / b)); }
 
+// The sine integral Si(x) = ∫_0^x sin(t)/t dt: its power series up to |x| = 20 (terms below 4e7, so about
+// 1e-9 of rounding), beyond it the asymptotic series Si = π/2 − f·cos x − g·sin x, f ~ (1/x)Σ(−1)^k (2k)!/x^{2k},
+// g ~ (1/x²)Σ(−1)^k (2k+1)!/x^{2k}, cut at its smallest term (below 3e-8 at x = 20; Abramowitz & Stegun 5.2.8,
+// 5.2.34–35).
+double sineIntegral(double x) {
+  if (x < 0.0) return -sineIntegral(-x);
+  if (std::isinf(x)) return 0.5 * core::kPi;
+  if (x <= 20.0) {
+    double term = x, sum = x;  // term_n = (−1)^n x^{2n+1}/(2n+1)!
+    for (int n = 1; n < 60; ++n) {
+      term *= -x * x / ((2.0 * n) * (2.0 * n + 1.0));
+      const double add = term / (2.0 * n + 1.0);
+      sum += add;
+      if (std::abs(add) < 1e-17 * std::abs(sum)) break;
+    }
+    return sum;
+  }
+  double f = 0.0, g = 0.0, tf = 1.0, tg = 1.0;  // the k-th terms (2k)!/x^{2k} and (2k+1)!/x^{2k}, signed
+  const double inv2 = 1.0 / (x * x);
+  for (int k = 0; k < 40; ++k) {
+    f += tf;
+    g += tg;
+    const double nf = -tf * (2.0 * k + 1.0) * (2.0 * k + 2.0) * inv2, ng = -tg * (2.0 * k + 2.0) * (2.0 * k + 3.0) * inv2;
+    if (std::abs(nf) >= std::abs(tf) || std::abs(ng) >= std::abs(tg)) break;
+    tf = nf, tg = ng;
+  }
+  return 0.5 * core::kPi - f / x * std::cos(x) - g * inv2 * std::sin(x);
+}
+
+// ∫_0^w sinc²: Si(2πw)/π − sin²(πw)/(π²w) (its derivative is sin(2πw)/(πw) + sinc²(w) − sin(2πw)/(πw)).
+double farFieldCumulative(double w) {
+  if (std::isinf(w)) return std::copysign(0.5, w);
+  if (w == 0.0) return 0.0;
+  const double s = std::sin(core::kPi * w);
+  return sineIntegral(2.0 * core::kPi * w) / core::kPi - s * s / (core::kPi * core::kPi * w);
+}
+
 }  // namespace
+
+double farFieldMass(double w_lo, double w_hi) {
+  return w_hi > w_lo ? farFieldCumulative(w_hi) - farFieldCumulative(w_lo) : 0.0;
+}
 
 double farFieldEval(double w) {
   if (w == 0.0) return 1.0;

@@ -12,6 +12,7 @@
 
 #include "diffray/core/math.h"
 #include "diffray/room/room.h"
+#include "diffray/transport/opening_transmission.h"
 #include "diffray/wbsdf/table.h"
 
 namespace diffray::transport {
@@ -79,6 +80,19 @@ class RoomOccluders {
                              const core::Vec3& centre, double radius_m, const double xi[2]) const;
   bool nextEventSupported(int k) const;
 
+  /// Whether occluder k returns the energy its opening does not carry: an opening (each axis an opening or
+  /// uniform, Kirchhoff faces, not a grating) in a wall that reflects (surround(k) not zero). Kirchhoff's
+  /// opening passes the part τ of what arrives that its far-field pattern sends into propagating directions
+  /// (OpeningTransmission); in a black screen the rest is absorbed, in a wall that reflects it comes back.
+  bool returnsEnergy(int k) const { return occluders_[k].returns; }
+  /// The reflectance 1 − α per band of the wall around occluder k (surroundReflectance).
+  const core::BandArray& surround(int k) const { return occluders_[k].surround; }
+  /// τ̄ of band b (OpeningTransmission::at) for a ray along unit `dir` at occluder k; only where returnsEnergy.
+  double transmission(int k, int band, const core::Vec3& dir) const {
+    const Entry& e = occluders_[k];
+    return e.tau.at(band, dir.dot(e.spec.ex), dir.dot(e.spec.ey));
+  }
+
   const room::Occluder& occluder(int k) const { return occluders_[k].spec; }
   int size() const { return static_cast<int>(occluders_.size()); }
 
@@ -90,7 +104,18 @@ class RoomOccluders {
   struct Entry {
     room::Occluder spec;
     Axis x, y;
+    core::BandArray surround = core::bandFill(0.0);
+    bool returns = false;
+    OpeningTransmission tau;  ///< built where `returns`
   };
+  /// The reflectance 1 − α per band of the wall around opening `o`, averaged over its diffracting edges
+  /// (occluder_surround.cpp): at the middle of each edge, the nearest surface within 0.25 m that is no
+  /// occluder's and no opening, found along the occluder's plane from just inside the opening outward (a
+  /// thick wall's reveal), else toward the plane from just beyond the edge (a thin wall). Zero for
+  /// occluders that are not openings with Kirchhoff faces, and where no surface is found (an opening in
+  /// free space).
+  static core::BandArray surroundReflectance(const room::Room& room, const room::Occluder& o,
+                                             const std::vector<int>& of_triangle);
   /// Shift u' (cycles per metre) and its weight along one axis at local coordinate c, for incident direction
   /// cosine `alpha` along the axis, drawn (edge kernels) where |alpha + λu'| < alpha_max. `open_sign`: ±1
   /// the direction along the axis from the nearer diffracting edge into the opening, 0 if none.

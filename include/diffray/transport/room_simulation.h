@@ -3,9 +3,10 @@
 // the room's order for every source–listener pair and rays for the rest (transport/image_sources.h and
 // room_tracer.h, which never count a path twice), summed over the sources into one ir::EnergyResponse per
 // listener. The length is the room file's, or "auto": the time at which the energy in flight in the room
-// has fallen by 60 dB in every band, measured by a pilot trace of up to 20,000 rays (Eyring's estimate
-// misjudges non-diffuse rooms; 1.5 × Eyring if the pilot cannot tell), capped at max_length_s. Warnings (rays lost through gaps, a source outside the room) are
-// returned, not thrown: the run goes on. Units: seconds, metres, J/m². Deterministic for a seed.
+// has fallen by 60 dB in every band, measured by a pilot trace of up to 20,000 rays with the run's WBSDF
+// occluders (Eyring's estimate misjudges non-diffuse rooms; 1.5 × Eyring if the pilot cannot tell), capped
+// at max_length_s. Warnings (rays lost through gaps, a source outside the room) are returned, not thrown:
+// the run goes on. Units: seconds, metres, J/m². Deterministic for a seed.
 #include <cstdint>
 #include <functional>
 #include <limits>

@@ -139,6 +139,28 @@ struct Tracer {
   // The path leaves an occluder along `dir`, just off its plane on the side it goes to.
   void leaveOccluder(Path& s, const Vec3& dir, const Vec3& n_in) const;
 
+  // At an opening that returns energy (RoomOccluders::returnsEnergy): whether the path goes through or comes
+  // back, from one uniform. Band b goes through with τ_b (RoomOccluders::transmission) and comes back with
+  // (1 − τ_b)·R_b (the surround's reflectance); the path goes through with probability p_t = Σ|e_b|τ_b/Σ|e_b|
+  // (its energies' mean τ, so that the fates of a path that carries one band are exact) and each fate's
+  // weights divide by its probability: every band's expectation is exact.
+  struct OpeningFate {
+    bool back = false;
+    double p_through = 1.0;
+    core::BandArray tau = core::bandFill(1.0);
+  };
+  OpeningFate openingFate(core::FastRng& rng, const Path& s, int k) const;
+  // The path comes back off the wall around occluder k: its energies times (1 − τ_b)·R_b/(1 − p_t), along
+  // the specular reflection off the occluder's plane, on the side it came from. Not a diffraction; next-event
+  // estimation served the transmitted flight, so no listener's score is skipped.
+  void comeBack(Path& s, int k, const OpeningFate& f, const Vec3& n_in) const;
+  // At a WBSDF occluder event: where k returns energy, the path's fate; true when it came back (comeBack
+  // done), else `through` gets 1/p_t, the factor on the transmitted weights.
+  bool turnsBack(core::FastRng& rng, Path& s, int k, const Vec3& n_in, double& through) const;
+  // An opening that returns energy, met once the path's WBSDF scatterings are spent: through it along the
+  // same direction (energies times τ_b/p_t) or back off its wall (comeBack).
+  void passOpening(core::FastRng& rng, Path& s, int k, const Vec3& n_in) const;
+
   // A WBSDF occluder event for a single-band path at the hit point (paper eq. 8–10); false when it ends.
   bool scatterAtOccluder(RoomTraceResult& acc, core::FastRng& rng, Path& s, int k, const Vec3& n_in) const;
 

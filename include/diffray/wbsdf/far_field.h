@@ -27,5 +27,8 @@ double farFieldEval(double w);
 double farFieldPdf(double w, double w_lo, double w_hi);
 /// Samples w in [w_lo, w_hi] from one uniform in [0, 1).
 FarFieldSample farFieldSample(double w_lo, double w_hi, double xi);
+/// ∫ sinc² over [w_lo, w_hi] (either end may be infinite): the part of the pattern inside the range, from the
+/// antiderivative Si(2πw)/π − sin²(πw)/(π²w) (Si the sine integral; absolute error below 1e-8).
+double farFieldMass(double w_lo, double w_hi);
 
 }  // namespace diffray::wbsdf
