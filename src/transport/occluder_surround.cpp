@@ -1,7 +1,6 @@
 // The wall around an opening occluder (RoomOccluders::surroundReflectance): which surface the part of the
 // incident energy that the opening does not carry returns from.
-#include <cmath>
-#include <limits>
+#include <vector>
 
 #include "diffray/geometry/mesh.h"
 #include "diffray/transport/room_occluders.h"

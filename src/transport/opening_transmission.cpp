@@ -30,7 +30,7 @@ double OpeningTransmission::exact(double length_x_m, double length_y_m, double l
     return wbsdf::farFieldMass((-c - alpha) * sx, (c - alpha) * sx);
   }
   // The outer integral in φ, α' = sin φ (so √(1 − α'²) = cos φ: the integrand is smooth up to the rim), by
-  // composite Simpson with at least 16 nodes per unit of w = (α' − α)L/λ (dw/dφ ≤ L/λ).
+  // composite Simpson with at least kNodesPerUnitW nodes per unit of w = (α' − α)L/λ (dw/dφ ≤ L/λ).
   const double sy = length_y_m / lambda_m, half_pi = 0.5 * kPi;
   int m = static_cast<int>(std::ceil(kNodesPerUnitW * sx * 2.0 * half_pi));
   m = std::max(64, m + (m & 1));
