@@ -244,12 +244,18 @@ void Tracer::follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
       pos -= off_plane * tri.normal;
       off_plane = 0.0;  // applied: a surface event below must not take it off again
       const Vec3 n_in = side * tri.normal;
-      if (opt.occluders && s.diffractions < opt.max_diffractions) {
-        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0) {
+      if (opt.occluders) {
+        const int k = opt.occluders->occluderOf(hit.triangle);
+        const bool scatters = k >= 0 && s.diffractions < opt.max_diffractions;
+        // Once the path's WBSDF scatterings are spent, an opening that returns energy still divides it:
+        // through or back, per band.
+        if (scatters || (k >= 0 && opt.occluders->returnsEnergy(k))) {
           // The occluder code works on the Path.
           s.e = asBands(e, scale);
           s.pos = pos, s.dir = dir, s.path_m = path_m, s.order = order, s.specular_chain = specular_chain;
-          if (opt.portal && opt.next_event && opt.occluders->nextEventSupported(k)) {
+          if (!scatters) {
+            passOpening(rng, s, k, n_in);
+          } else if (opt.portal && opt.next_event && opt.occluders->nextEventSupported(k)) {
             if (!portalAtOccluder(acc, rng, s, k, n_in)) return;
           } else {
             if (s.band < 0) chooseBand(rng, s);
@@ -258,19 +264,7 @@ void Tracer::follow(RoomTraceResult& acc, core::FastRng& rng, Path& s) const {
           if (!roulette<0>(acc, rng, s.e, threshold)) return;
           e = carried<NB>(s.e, scale);
           pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
-          skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
-          continue;
-        }
-      }
-      // An opening that returns energy, after the path's WBSDF scatterings: through or back, per band.
-      if (opt.occluders) {
-        if (const int k = opt.occluders->occluderOf(hit.triangle); k >= 0 && opt.occluders->returnsEnergy(k)) {
-          s.e = asBands(e, scale);
-          s.pos = pos, s.dir = dir, s.order = order, s.specular_chain = specular_chain;
-          passOpening(rng, s, k, n_in);
-          if (!roulette<0>(acc, rng, s.e, threshold)) return;
-          e = carried<NB>(s.e, scale);
-          pos = s.pos, dir = s.dir, order = s.order, specular_chain = s.specular_chain;
+          if (scatters) skip_next = s.skip_next_score, skip_after_floor = s.skip_after_floor;
           continue;
         }
       }

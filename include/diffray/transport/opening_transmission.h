@@ -31,7 +31,6 @@ class OpeningTransmission {
 
   /// τ̄ of band b for incidence direction cosines (α, β) along the opening's axes.
   double at(int band, double alpha, double beta) const;
-  bool empty() const { return table_.empty(); }
 
   /// τ at one wavelength (the quadrature above), for incidence (α, β) with α² + β² ≤ 1.
   static double exact(double length_x_m, double length_y_m, double lambda_m, double alpha, double beta);
