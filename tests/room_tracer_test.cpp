@@ -335,6 +335,51 @@ TEST(ImageSources, WallBlocksAndOpeningPasses) {
   }
 }
 
+TEST(ImageSources, NoPathThroughABlockingOpeningNotEvenAtItsEdge) {
+  // A box split at x = 2.5 by a black wall with a doorway (an opening) whose triangles block, as the WBSDF's
+  // occluders do: no path may pass the doorway. The source and the listener stand mirror-symmetric about
+  // it at equal heights, so the floor reflection meets the floor at (2.5, 2, 0), on the doorway's sill,
+  // where its legs only touch the doorway's edge. Without the mask the opening passes the direct sound and
+  // that floor reflection (the control). (The side walls' and the ceiling's reflections at their junction
+  // with the black wall remain: their legs touch that wall's edge; with the listener off the symmetry every
+  // path is blocked.)
+  dr::Room room = boxRoom(Vec3(5, 4, 3), 0.3, 0.0);
+  dr::Material open, black;
+  open.name = "doorway";
+  black.name = "black";
+  for (int b = 0; b < room.bands.size(); ++b) {
+    open.absorption[b] = open.transmission[b] = 1.0;
+    black.absorption[b] = 1.0;
+  }
+  const int id_open = room.addMaterial(open), id_black = room.addMaterial(black);
+  room.addPolygon({Vec3(2.5, 1.5, 0), Vec3(2.5, 2.5, 0), Vec3(2.5, 2.5, 2), Vec3(2.5, 1.5, 2)}, id_open, "doorway");
+  room.addPolygon({Vec3(2.5, 0, 0), Vec3(2.5, 1.5, 0), Vec3(2.5, 1.5, 3), Vec3(2.5, 0, 3)}, id_black, "wall");
+  room.addPolygon({Vec3(2.5, 2.5, 0), Vec3(2.5, 4, 0), Vec3(2.5, 4, 3), Vec3(2.5, 2.5, 3)}, id_black, "wall");
+  room.addPolygon({Vec3(2.5, 1.5, 2), Vec3(2.5, 2.5, 2), Vec3(2.5, 2.5, 3), Vec3(2.5, 1.5, 3)}, id_black, "wall");
+  room.sources.push_back({"S", Vec3(1, 2, 1), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(4, 2, 1), 0.1});
+  const dt::RoomGeometry geometry(room);
+  std::vector<char> mask(room.mesh.triangleCount(), 0);
+  for (std::size_t t = 0; t < mask.size(); ++t) mask[t] = room.group_of_triangle[t] == "doorway" ? 1 : 0;
+  dt::ImageSourceOptions opt;
+  opt.max_order = 2;
+  const double direct = 3.0, via_floor = std::sqrt(3.0 * 3.0 + 2.0 * 2.0);
+  const auto passing = dt::imageSources(room, geometry, 0, 0, opt);
+  auto has = [&](double d) {
+    for (const auto& a : passing)
+      if (std::abs(a.delay_s * opt.speed_of_sound_m_s - d) < 1e-9) return true;
+    return false;
+  };
+  EXPECT_TRUE(has(direct));
+  EXPECT_TRUE(has(via_floor));
+  opt.blocking_triangles = &mask;
+  const auto blocked = dt::imageSources(room, geometry, 0, 0, opt);
+  for (const auto& a : blocked)
+    for (double d : {direct, via_floor}) EXPECT_GT(std::abs(a.delay_s * opt.speed_of_sound_m_s - d), 1e-6) << "order " << a.order;
+  room.listeners[0].position_m = Vec3(4, 2.2, 1.3);  // off the symmetry: the intersector's own case
+  EXPECT_TRUE(dt::imageSources(room, geometry, 0, 0, opt).empty());
+}
+
 TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {
   // 6 planes at order 50: 1 + 6·(5^50 − 1)/4 ≈ 1.33e35 candidates, far past any integer type (the message
   // used to print a negative count).

@@ -43,15 +43,7 @@ struct Validator {
     for (int tri : geometry.planes()[plane].triangles) {
       if (opening[geometry.triangle(tri).material] && !(blocking && (*blocking)[tri])) continue;  // no mirror
       const auto& t = room.mesh.triangles[tri];
-      const Vec3 &a = room.mesh.vertices[t[0]], &b = room.mesh.vertices[t[1]], &c = room.mesh.vertices[t[2]];
-      // p's barycentric coordinates in the triangle's plane; inside up to tol over the triangle's size.
-      const Vec3 e1 = b - a, e2 = c - a, q = p - a;
-      const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), q1 = q.dot(e1), q2 = q.dot(e2);
-      const double det = d11 * d22 - d12 * d12;
-      if (!(det > 0.0)) continue;
-      const double u = (d22 * q1 - d12 * q2) / det, v = (d11 * q2 - d12 * q1) / det;
-      const double slack = tol / std::sqrt(std::max(d11, d22));
-      if (u >= -slack && v >= -slack && u + v <= 1.0 + slack) return tri;
+      if (insideTriangle(p, room.mesh.vertices[t[0]], room.mesh.vertices[t[1]], room.mesh.vertices[t[2]], tol)) return tri;
     }
     return -1;
   }
@@ -103,7 +95,69 @@ struct Validator {
     const int blocker = firstSurface(x, to_source / dist, dist - tol, t);
     if (blocker >= 0) return false;
     first_leg_dir = -to_source / dist;  // leaving the source
-    return true;
+    return !(blocking && crossesBlocking(source, listener, images, planes, tol));
+  }
+
+  // Whether the path crosses a blocking triangle's plane inside the triangle, its edges included (within
+  // tol). The intersector misses a crossing at a leg's end: a reflection point on the blocking rectangle's
+  // edge (a floor reflection at a door's sill, a jamb reflection in the door's plane, as when the source
+  // and the listener stand mirror-symmetric about the door). The path's points are rebuilt from the
+  // images: reflection k lies where the line from point k+1 to image k meets plane k.
+  bool crossesBlocking(const Vec3& source, const Vec3& listener, const std::vector<Vec3>& images,
+                       const std::vector<int>& planes, double tol) const {
+    std::vector<Vec3> path(planes.size() + 2);
+    path.front() = source;
+    path.back() = listener;
+    for (int k = static_cast<int>(planes.size()) - 1; k >= 0; --k) {
+      const MirrorPlane& pl = geometry.planes()[planes[k]];
+      const Vec3& from = path[k + 2];
+      const Vec3 to_image = images[k] - from;
+      const double denom = pl.normal.dot(to_image);
+      path[k + 1] = std::abs(denom) < 1e-300 ? from : from + (pl.offset - pl.normal.dot(from)) / denom * to_image;
+    }
+    for (std::size_t tri = 0; tri < blocking->size(); ++tri) {
+      if (!(*blocking)[tri]) continue;
+      const auto& tv = room.mesh.triangles[tri];
+      const Vec3 &a = room.mesh.vertices[tv[0]], &b = room.mesh.vertices[tv[1]], &c = room.mesh.vertices[tv[2]];
+      const Vec3 n = (b - a).cross(c - a).normalized();
+      int side = 0;  // the side of the last point off the plane
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        const double d = n.dot(path[i] - a);
+        if (std::abs(d) <= tol) {  // on the plane: a crossing there if the path goes on to the other side
+          if (side == 0 || !onOtherSide(path, i, n, a, side, tol) || !insideTriangle(path[i], a, b, c, tol)) continue;
+          return true;
+        }
+        const int s = d > 0.0 ? 1 : -1;
+        if (side == -s && i > 0 && std::abs(n.dot(path[i - 1] - a)) > tol) {
+          const double d0 = n.dot(path[i - 1] - a);
+          if (insideTriangle(path[i - 1] + d0 / (d0 - d) * (path[i] - path[i - 1]), a, b, c, tol)) return true;
+        }
+        side = s;
+      }
+    }
+    return false;
+  }
+
+  // Whether the first point after path[i] that lies off the plane (n, a) is on the side opposite `side`.
+  static bool onOtherSide(const std::vector<Vec3>& path, std::size_t i, const Vec3& n, const Vec3& a, int side,
+                          double tol) {
+    for (std::size_t j = i + 1; j < path.size(); ++j) {
+      const double d = n.dot(path[j] - a);
+      if (std::abs(d) > tol) return (d > 0.0 ? 1 : -1) == -side;
+    }
+    return false;
+  }
+
+  // p (on the triangle's plane) inside triangle abc by its barycentric coordinates, up to tol over the
+  // triangle's size.
+  static bool insideTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, double tol) {
+    const Vec3 e1 = b - a, e2 = c - a, q = p - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), q1 = q.dot(e1), q2 = q.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(det > 0.0)) return false;
+    const double u = (d22 * q1 - d12 * q2) / det, v = (d11 * q2 - d12 * q1) / det;
+    const double slack = tol / std::sqrt(std::max(d11, d22));
+    return u >= -slack && v >= -slack && u + v <= 1.0 + slack;
   }
 };
 
