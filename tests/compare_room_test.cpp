@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -50,6 +51,22 @@ dr::Room quickTwoRooms() {
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
+// `none` against a stub wave model whose histogram of listener l in band b is band(l, b), bins of bin_s.
+dc::RoomCompareOptions noneAgainstStub(std::function<std::vector<double>(std::size_t, int)> band, double bin_s) {
+  dc::RoomCompareOptions o;
+  o.models = {"none"};
+  o.free_field = false;
+  o.wave = [band = std::move(band), bin_s](const dr::Room& r) {
+    dc::ListenerHistograms h;
+    h.bin_s = bin_s;
+    h.energy.resize(r.listeners.size());
+    for (std::size_t l = 0; l < r.listeners.size(); ++l)
+      for (int b = 0; b < r.bands.size(); ++b) h.energy[l].push_back(band(l, b));
+    return h;
+  };
+  return o;
+}
+
 // ---- the figures of one listener's histograms ------------------------------------------------------------
 
 TEST(CompareRoomFigures, ExponentialDecayGivesTheClosedForms) {
@@ -69,6 +86,19 @@ TEST(CompareRoomFigures, ExponentialDecayGivesTheClosedForms) {
   EXPECT_NEAR(f[0].t30_s, t60, 1e-6 * t60);
   EXPECT_NEAR(f[0].edt_s, t60, 1e-6 * t60);
   EXPECT_TRUE(std::isnan(f[1].g_db) && std::isnan(f[1].t30_s) && std::isnan(f[1].early_db));
+}
+
+TEST(CompareRoomFigures, TheEarlyWindowOpensItsLeadBeforeTheDirectSound) {
+  // Direct-sound time 30.4 ms (bin 30), window to bin 49; a lead of 4.2 ms opens it at bin 26 (26.2 ms). One
+  // unit of energy in each of bins 25 … 50: the early energy is bins 26 … 49, 24 units; without a lead 30 … 49.
+  const double bin = 0.001, e10 = 1.0;
+  const std::vector<std::vector<double>> h{[] {
+    std::vector<double> v(80, 0.0);
+    for (int k = 25; k <= 50; ++k) v[static_cast<std::size_t>(k)] = 1.0;
+    return v;
+  }()};
+  EXPECT_NEAR(dc::roomFigures(h, bin, 0.0304, e10, {0.0042})[0].early_db, 10.0 * std::log10(24.0), 1e-12);
+  EXPECT_NEAR(dc::roomFigures(h, bin, 0.0304, e10)[0].early_db, 10.0 * std::log10(20.0), 1e-12);
 }
 
 TEST(CompareRoomFigures, DifferencesAreDbAndPercent) {
@@ -223,6 +253,40 @@ TEST(CompareRoom, ErrorsNameTheListenerAndModel) {
 
 // ---- the wave-model slot -----------------------------------------------------------------------------------
 
+TEST(CompareRoom, TheEarlyWindowLeadsByTheSphereAndTheBandFilter) {
+  // The stub: per listener and band one unit of energy in the first bin of the early window by its
+  // definition (R/c + 1/Δf before the direct-sound time, Δf the band's width) and one in the bin before it.
+  // Only the first is early energy.
+  const dr::Room room = quickTwoRooms();
+  const double speed = dr::speedOfSound(room.air), bin = 0.001;
+  auto first = [&](std::size_t l, int b) {
+    const dr::Listener& li = room.listeners[l];
+    const double direct = (li.position_m - room.sources[0].position_m).norm() / speed;
+    const double lead = li.radius_m / speed + 1.0 / (room.bands.upperHz(b) - room.bands.lowerHz(b));
+    return static_cast<long>(std::floor((direct - lead) / bin));
+  };
+  const dc::RoomCompareOptions o = noneAgainstStub(
+      [&](std::size_t l, int b) {
+        std::vector<double> v(200, 0.0);
+        const long k = first(l, b);
+        if (k >= 1) v[static_cast<std::size_t>(k)] = v[static_cast<std::size_t>(k - 1)] = 1.0;
+        else v[0] = 1.0;  // the window opens before emission (a near listener, a low band): all is early
+        return v;
+      },
+      bin);
+  const dc::RoomComparison c = dc::compareRoom(room, o);
+  const double e10 = 1.0 / 100.0;
+  int checked = 0;
+  for (std::size_t l = 0; l < room.listeners.size(); ++l)
+    for (int b = 0; b < room.bands.size(); ++b) {
+      const dc::RoomFigures& w = c.models[1].figures[l][static_cast<std::size_t>(b)];
+      EXPECT_NEAR(w.early_db, 10.0 * std::log10(1.0 / e10), 1e-9) << l << " " << b;
+      EXPECT_NEAR(w.g_db, 10.0 * std::log10((first(l, b) >= 1 ? 2.0 : 1.0) / e10), 1e-9) << l << " " << b;
+      checked += first(l, b) >= 1 ? 1 : 0;
+    }
+  EXPECT_GE(checked, 12);  // most listener-bands have a bin before the window
+}
+
 TEST(CompareRoom, WaveSlotGivesEachRayModelsDifference) {
   // The stub: per listener l, in the four bands 63–500 Hz, an exponential decay (T = 1.2 s) starting two bins
   // after the direct-sound bin, amplitude 0.05·(l + 1); the other bands empty (not covered). Its G, early
@@ -235,19 +299,11 @@ TEST(CompareRoom, WaveSlotGivesEachRayModelsDifference) {
   std::vector<long> k_direct;
   for (const auto& li : room.listeners)
     k_direct.push_back(static_cast<long>(std::floor((li.position_m - room.sources[0].position_m).norm() / speed / bin)));
-  dc::RoomCompareOptions o;
-  o.models = {"none"};
-  o.free_field = false;
-  o.wave = [&](const dr::Room& r) {
-    dc::ListenerHistograms h;
-    h.bin_s = bin;
-    h.energy.resize(r.listeners.size());
-    for (std::size_t l = 0; l < r.listeners.size(); ++l)
-      for (int b = 0; b < r.bands.size(); ++b)
-        h.energy[l].push_back(b < 4 ? decay(t60, bin, k_direct[l] + 2, bins, 0.05 * static_cast<double>(l + 1))
-                                    : std::vector<double>());
-    return h;
-  };
+  const dc::RoomCompareOptions o = noneAgainstStub(
+      [&](std::size_t l, int b) {
+        return b < 4 ? decay(t60, bin, k_direct[l] + 2, bins, 0.05 * static_cast<double>(l + 1)) : std::vector<double>();
+      },
+      bin);
   const dc::RoomComparison c = dc::compareRoom(room, o);
   ASSERT_EQ(c.models.size(), 2u);
   ASSERT_EQ(c.models[1].model, "wave");

@@ -40,9 +40,17 @@ std::vector<std::vector<RoomFigures>> figuresOf(const room::Room& room, const st
                                                 const std::vector<std::vector<std::vector<double>>>& energy,
                                                 double bin_s, const std::vector<double>& direct_s, double e10) {
   std::vector<std::vector<RoomFigures>> out;
+  const double c = room::speedOfSound(room.air);
   for (std::size_t l = 0; l < room.listeners.size(); ++l) {
+    // The early window opens before the direct-sound time by what spreads an arrival ahead of it: the
+    // listener sphere (an arrival crosses it over ±R/c about its centre's time) and the wave reference's
+    // band filter (about ±1/Δf, Δf the band's width). No model has energy sooner than the direct sound's
+    // time less R/c, so the lead only gathers what these spreads moved ahead (room_compare.h).
+    std::vector<double> lead_s;
+    for (int b = 0; b < room.bands.size(); ++b)
+      lead_s.push_back(room.listeners[l].radius_m / c + 1.0 / (room.bands.upperHz(b) - room.bands.lowerHz(b)));
     try {
-      out.push_back(roomFigures(energy[l], bin_s, direct_s[l], e10));
+      out.push_back(roomFigures(energy[l], bin_s, direct_s[l], e10, lead_s));
     } catch (const core::InputError& e) {
       throw core::InputError(where(room, static_cast<int>(l), model), e.what());
     }
@@ -73,7 +81,7 @@ bool isEnclosedRoom(const room::Room& room) {
 }
 
 std::vector<RoomFigures> roomFigures(const std::vector<std::vector<double>>& energy_per_band, double bin_s,
-                                     double direct_s, double e10) {
+                                     double direct_s, double e10, const std::vector<double>& lead_s) {
   const std::size_t nb = energy_per_band.size();
   std::vector<RoomFigures> out(nb);
   // The metrics share one onset over the bands they are given: pass the covered bands only.
@@ -86,10 +94,12 @@ std::vector<RoomFigures> roomFigures(const std::vector<std::vector<double>>& ene
     }
   if (covered.empty()) return out;
   const std::vector<ir::BandMetrics> m = ir::metricsFromHistograms(covered, bin_s);
-  const auto k0 = static_cast<long>(std::floor(direct_s / bin_s));
-  const long k1 = k0 + std::lround(kEarlyWindowS / bin_s);
+  const auto k_direct = static_cast<long>(std::floor(direct_s / bin_s));
+  const long k1 = k_direct + std::lround(kEarlyWindowS / bin_s);
   for (std::size_t i = 0; i < covered.size(); ++i) {
     const std::vector<double>& h = covered[i];
+    const double lead = index[i] < lead_s.size() ? lead_s[index[i]] : 0.0;
+    const auto k0 = static_cast<long>(std::floor((direct_s - lead) / bin_s));
     double all = 0.0, early = 0.0;
     for (std::size_t k = 0; k < h.size(); ++k) {
       all += h[k];

@@ -10,7 +10,10 @@
 //   histograms' units (J/m²: a 1 W omni source gives 1/r² in free field);
 // - early: the energy in the 20 ms from the direct-sound time (the distance to the nearest source over the
 //   speed of sound, whether or not the source is seen), re the same E₁₀ (dB): the 20 bins of 1 ms from the
-//   bin holding that time. For a listener hidden from the source it is what diffraction brings early;
+//   bin holding that time, and before them the bins from R/c + 1/Δf earlier (R the listener's radius, Δf the
+//   band's width): the listener sphere spreads an arrival over ±R/c about its centre's time and the wave
+//   reference's band filter over about ±1/Δf, ahead of the direct-sound time as well as after it, and no
+//   model has energy sooner. For a listener hidden from the source it is what diffraction brings early;
 // - EDT, T30, C50, C80 by ir::metricsFromHistograms (ISO 3382-1; NaN where the decay cannot give them).
 // The free-field aperture reference (compare/point_models.h: a point source through the door in an infinite
 // screen, no room) is computed only for listeners it describes (FreeFieldReference): it is the direct sound
@@ -102,9 +105,10 @@ bool isEnclosedRoom(const room::Room& room);
 RoomComparison compareRoom(const room::Room& room, const RoomCompareOptions& options);
 
 /// The figures of one listener's histograms ([band][bin], bin_s wide, time 0 at emission): `e10` is E₁₀,
-/// `direct_s` the direct-sound time. An empty band gives NaN figures.
+/// `direct_s` the direct-sound time, `lead_s` per band how long before it the early window opens (missing:
+/// 0). An empty band gives NaN figures.
 std::vector<RoomFigures> roomFigures(const std::vector<std::vector<double>>& energy_per_band, double bin_s,
-                                     double direct_s, double e10);
+                                     double direct_s, double e10, const std::vector<double>& lead_s = {});
 
 /// model − reference (FigureDifference's units); NaN where either is NaN.
 FigureDifference figureDifference(const RoomFigures& model, const RoomFigures& reference);
