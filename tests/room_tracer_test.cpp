@@ -337,12 +337,11 @@ TEST(ImageSources, WallBlocksAndOpeningPasses) {
 
 TEST(ImageSources, NoPathThroughABlockingOpeningNotEvenAtItsEdge) {
   // A box split at x = 2.5 by a black wall with a doorway (an opening) whose triangles block, as the WBSDF's
-  // occluders do: no path may pass the doorway. The source and the listener stand mirror-symmetric about
-  // it at equal heights, so the floor reflection meets the floor at (2.5, 2, 0), on the doorway's sill,
-  // where its legs only touch the doorway's edge. Without the mask the opening passes the direct sound and
-  // that floor reflection (the control). (The side walls' and the ceiling's reflections at their junction
-  // with the black wall remain: their legs touch that wall's edge; with the listener off the symmetry every
-  // path is blocked.)
+  // occluders do: no path may pass the doorway or the wall. The source and the listener stand
+  // mirror-symmetric about them at equal heights, so every reflection that could pass meets its mirror on
+  // the plane x = 2.5, where its legs only touch the wall's or the doorway's edge: the floor's at
+  // (2.5, 2, 0), on the doorway's sill; the side walls' and the ceiling's where the wall meets them.
+  // Without the mask the opening passes the direct sound and that floor reflection (the control).
   dr::Room room = boxRoom(Vec3(5, 4, 3), 0.3, 0.0);
   dr::Material open, black;
   open.name = "doorway";
@@ -373,11 +372,30 @@ TEST(ImageSources, NoPathThroughABlockingOpeningNotEvenAtItsEdge) {
   EXPECT_TRUE(has(direct));
   EXPECT_TRUE(has(via_floor));
   opt.blocking_triangles = &mask;
-  const auto blocked = dt::imageSources(room, geometry, 0, 0, opt);
-  for (const auto& a : blocked)
-    for (double d : {direct, via_floor}) EXPECT_GT(std::abs(a.delay_s * opt.speed_of_sound_m_s - d), 1e-6) << "order " << a.order;
+  for (const auto& a : dt::imageSources(room, geometry, 0, 0, opt))
+    ADD_FAILURE() << "order " << a.order << " at " << a.delay_s * opt.speed_of_sound_m_s << " m passes";
   room.listeners[0].position_m = Vec3(4, 2.2, 1.3);  // off the symmetry: the intersector's own case
   EXPECT_TRUE(dt::imageSources(room, geometry, 0, 0, opt).empty());
+}
+
+TEST(ImageSources, AReflectionAtAConvexCornerStays) {
+  // A pillar [4, 5] × [2, 3] × [0, 3] in a 10 × 6 × 3 m box. The reflection off its face x = 4 from
+  // S = (1.5, 2, 1.5) to L = (2, 3.8, 1.5) meets the face at (4, 3, 1.5), on the pillar's corner: its second
+  // leg touches the plane of the pillar's face y = 3 at that face's edge, but the face lies behind the
+  // mirror. The path is the limit of valid ones (reflections a little lower on the face), so it stays, at
+  // |S' − L| = |(6.5, 2) − (2, 3.8)| = √23.49 m, S' the image of S in x = 4 (no other path has that length).
+  dr::Room room = boxRoom(Vec3(10, 6, 3), 0.3, 0.0);
+  const int pillar[6] = {0, 0, 0, 0, 0, 0};
+  room.addBox(Vec3(4, 2, 0), Vec3(5, 3, 3), pillar, "pillar");
+  room.sources.push_back({"S", Vec3(1.5, 2, 1.5), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(2, 3.8, 1.5), 0.1});
+  const dt::RoomGeometry geometry(room);
+  dt::ImageSourceOptions opt;
+  opt.max_order = 1;
+  bool found = false;
+  for (const auto& a : dt::imageSources(room, geometry, 0, 0, opt))
+    found = found || std::abs(a.delay_s * opt.speed_of_sound_m_s - std::sqrt(23.49)) < 1e-9;
+  EXPECT_TRUE(found);
 }
 
 TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {

@@ -95,16 +95,22 @@ struct Validator {
     const int blocker = firstSurface(x, to_source / dist, dist - tol, t);
     if (blocker >= 0) return false;
     first_leg_dir = -to_source / dist;  // leaving the source
-    return !(blocking && crossesBlocking(source, listener, images, planes, tol));
+    return !blockedUnseen(source, listener, images, planes, tol);
   }
 
-  // Whether the path crosses a blocking triangle's plane inside the triangle, its edges included (within
-  // tol). The intersector misses a crossing at a leg's end: a reflection point on the blocking rectangle's
-  // edge (a floor reflection at a door's sill, a jamb reflection in the door's plane, as when the source
-  // and the listener stand mirror-symmetric about the door). The path's points are rebuilt from the
-  // images: reflection k lies where the line from point k+1 to image k meets plane k.
-  bool crossesBlocking(const Vec3& source, const Vec3& listener, const std::vector<Vec3>& images,
-                       const std::vector<int>& planes, double tol) const {
+  // Whether a surface blocks the path where the intersector cannot see it. The intersector misses a
+  // crossing at a leg's end, so a reflection point on the edge of a surface whose plane the path crosses
+  // right there passes unseen: a side wall's reflection where a partition meets that wall, a floor
+  // reflection at a door's sill, a jamb reflection in a door's plane (the source and the listener
+  // mirror-symmetric about the partition). Such a point blocks when it lies in the surface (edges included,
+  // within tol) and the surface stands on the reflection's air side: it then blocks the paths on either
+  // side of this one, which is their limit. A surface behind the mirror (a convex corner's other face)
+  // leaves the path the limit of valid ones on one side, and it stays. A blocking opening (the WBSDF's
+  // occluders, whose triangles are no mirrors for the rays' sake) blocks wherever a leg crosses it, edges
+  // included. The path's points are rebuilt from the images: reflection k lies where the line from point
+  // k+1 to image k meets plane k.
+  bool blockedUnseen(const Vec3& source, const Vec3& listener, const std::vector<Vec3>& images,
+                     const std::vector<int>& planes, double tol) const {
     std::vector<Vec3> path(planes.size() + 2);
     path.front() = source;
     path.back() = listener;
@@ -115,8 +121,9 @@ struct Validator {
       const double denom = pl.normal.dot(to_image);
       path[k + 1] = std::abs(denom) < 1e-300 ? from : from + (pl.offset - pl.normal.dot(from)) / denom * to_image;
     }
-    for (std::size_t tri = 0; tri < blocking->size(); ++tri) {
-      if (!(*blocking)[tri]) continue;
+    for (std::size_t tri = 0; tri < room.mesh.triangles.size(); ++tri) {
+      const bool masked = blocking && (*blocking)[tri];
+      if (opening[geometry.triangle(static_cast<int>(tri)).material] && !masked) continue;
       const auto& tv = room.mesh.triangles[tri];
       const Vec3 &a = room.mesh.vertices[tv[0]], &b = room.mesh.vertices[tv[1]], &c = room.mesh.vertices[tv[2]];
       const Vec3 n = (b - a).cross(c - a).normalized();
@@ -124,11 +131,16 @@ struct Validator {
       for (std::size_t i = 0; i < path.size(); ++i) {
         const double d = n.dot(path[i] - a);
         if (std::abs(d) <= tol) {  // on the plane: a crossing there if the path goes on to the other side
-          if (side == 0 || !onOtherSide(path, i, n, a, side, tol) || !insideTriangle(path[i], a, b, c, tol)) continue;
-          return true;
+          if (side == 0 || i == 0 || i + 1 == path.size() || !onOtherSide(path, i, n, a, side, tol) ||
+              !insideTriangle(path[i], a, b, c, tol))
+            continue;
+          const Vec3& mirror = geometry.planes()[planes[i - 1]].normal;  // path[i] is reflection i − 1
+          const double front = mirror.dot(path[i - 1] - path[i]), centre = mirror.dot((a + b + c) / 3.0 - path[i]);
+          if (masked || front * centre > 0.0) return true;
+          continue;
         }
         const int s = d > 0.0 ? 1 : -1;
-        if (side == -s && i > 0 && std::abs(n.dot(path[i - 1] - a)) > tol) {
+        if (masked && side == -s && i > 0 && std::abs(n.dot(path[i - 1] - a)) > tol) {
           const double d0 = n.dot(path[i - 1] - a);
           if (insideTriangle(path[i - 1] + d0 / (d0 - d) * (path[i] - path[i - 1]), a, b, c, tol)) return true;
         }
