@@ -4,7 +4,9 @@
 // `max_order` reflections, never twice in a row across the same plane, and every candidate path is
 // validated by tracing it back from the listener with the intersector: each reflection point must lie on
 // a triangle of its plane, and no surface may block a leg (surfaces that transmit everything, openings, do
-// not block). A valid path arrives at its exact delay d/c with, per band, the energy
+// not block), nor a surface on the mirror's air side whose plane the path crosses at the reflection point
+// itself (a side wall's reflection where a partition joins it: the intersector cannot see a crossing at a
+// leg's end). A valid path arrives at its exact delay d/c with, per band, the energy
 // P·D(θ)·Π(1 − α)(1 − s)·e^{−m d}/d² (the specular part of each reflection; J/m² for a 1 W omni source at
 // d = 1 m giving 1), so together with transport/room_tracer.h, which leaves exactly these paths out, no
 // path is counted twice. Units: metres, seconds. Pure function; thread-safe.
