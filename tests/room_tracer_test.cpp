@@ -10,6 +10,8 @@
 #include "diffray/core/error.h"
 #include "diffray/core/parallel.h"
 #include "diffray/transport/image_sources.h"
+#include "diffray/room/checks.h"
+#include "diffray/transport/room_simulation.h"
 #include "diffray/transport/room_tracer.h"
 
 namespace {
@@ -396,6 +398,49 @@ TEST(ImageSources, AReflectionAtAConvexCornerStays) {
   for (const auto& a : dt::imageSources(room, geometry, 0, 0, opt))
     found = found || std::abs(a.delay_s * opt.speed_of_sound_m_s - std::sqrt(23.49)) < 1e-9;
   EXPECT_TRUE(found);
+}
+
+TEST(RoomWorkload, AClosedRoomThatKeepsItsRaysIsRefused) {
+  // A 1 m rigid-ish box (α = 0.01) over 10 s: the free path 4V/S = 0.67 m gives 5,100 hits per ray, Russian
+  // roulette ends rays after ln(1e6)/−ln(0.99) = 1,375; at 1e7 rays 1.4e10 hits, above the 5e9 allowed.
+  dr::Room room = boxRoom(Vec3(1, 1, 1), 0.01, 0.0);
+  room.sources.push_back({"S", Vec3(0.3, 0.4, 0.5), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(0.7, 0.6, 0.5), 0.1});
+  dt::RoomSimulationOptions o;
+  o.rays = 10000000;
+  o.length_s = 10.0;
+  EXPECT_THROW(dt::simulateRoom(room, o), diffray::core::InputError);
+}
+
+TEST(RoomWorkload, WallsInTheOpenAreNotTakenForATinyRoom) {
+  // A rigid wall with a doorway standing in free field, and specks of surface: the open mesh sums to a
+  // volume below 20 litres over 168 m² of surface, and the source beside the wall tests inside it by ray
+  // parity. Taken as a room's free path, 4V/S < 0.5 mm would give more than 7e4 hits per ray over 0.1 s, 7e9
+  // for 100k rays, and the run would be refused; a mesh with open edges has a free path of at least 1 m
+  // (34 hits per ray).
+  dr::Room room;
+  dr::Material rigid;
+  rigid.name = "rigid";
+  const int id = room.addMaterial(rigid);
+  const double w = 7.0, z0 = -4.0, z1 = 8.0;
+  room.addPolygon({Vec3(0, -w, z0), Vec3(0, -0.45, z0), Vec3(0, -0.45, z1), Vec3(0, -w, z1)}, id, "left");
+  room.addPolygon({Vec3(0, 0.45, z0), Vec3(0, w, z0), Vec3(0, w, z1), Vec3(0, 0.45, z1)}, id, "right");
+  room.addPolygon({Vec3(0, -0.45, 2.1), Vec3(0, 0.45, 2.1), Vec3(0, 0.45, z1), Vec3(0, -0.45, z1)}, id, "above");
+  room.addPolygon({Vec3(0, -0.45, z0), Vec3(0, 0.45, z0), Vec3(0, 0.45, 0), Vec3(0, -0.45, 0)}, id, "below");
+  room.addPolygon({Vec3(-5, w - 0.1, z1), Vec3(-4.95, w - 0.1, z1), Vec3(-4.95, w, z1)}, id, "speck");
+  room.addPolygon({Vec3(5, w - 0.1, z1), Vec3(5.05, w - 0.1, z1), Vec3(5.05, w, z1)}, id, "speck");
+  room.addPolygon({Vec3(0, -w, z0), Vec3(0.05, -w, z0), Vec3(0.05, -w + 0.1, z0)}, id, "speck");
+  room.sources.push_back({"S", Vec3(-0.52, 2.95, 1.05), 1.0, {}});
+  room.listeners.push_back({"L", Vec3(3.0, 0.07, 1.08), 0.3});
+  // The premise: what the old estimate was fooled by.
+  ASSERT_GT(dr::openEdgeCount(room), 0);
+  ASSERT_TRUE(dr::insideRoom(room, room.sources[0].position_m));
+  ASSERT_LT(room.volume(), 0.02);
+  dt::RoomSimulationOptions o;
+  o.rays = 100000;
+  o.length_s = 0.1;
+  o.ism_order = 1;
+  EXPECT_NO_THROW(dt::simulateRoom(room, o));
 }
 
 TEST(ImageSources, TooManyCandidatesIsOneLineWithAPositiveCount) {

@@ -133,7 +133,11 @@ double bouncesPerRay(const room::Room& room, double length_s, double c) {
   // nothing about the rays' paths, which leave into free space; the 1 m free path again.
   const bool enclosed = std::any_of(room.sources.begin(), room.sources.end(),
                                     [&](const room::Source& s) { return room::insideRoom(room, s.position_m); });
-  const double by_length = length_s * c / (enclosed ? 4.0 * volume / area : 1.0);
+  double free_path = enclosed ? 4.0 * volume / area : 1.0;
+  // A mesh with open edges has a volume only as good as its gaps allow (walls standing in free field can
+  // sum to almost nothing, and a source beside them can test inside): its free path is at least 1 m.
+  if (enclosed && room::openEdgeCount(room) > 0) free_path = std::max(free_path, 1.0);
+  const double by_length = length_s * c / free_path;
   const SurfaceSums sums = surfaceSums(room);
   double least = 1.0;  // the smallest mean fraction that leaves the room for good at a hit: α − τ
   for (int b = 0; b < room.bands.size(); ++b) least = std::min(least, (sums.absorbed[b] - sums.transmitted[b]) / area);

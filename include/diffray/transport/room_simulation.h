@@ -61,6 +61,9 @@ struct RoomSimulation {
   std::vector<std::string> warnings;
 };
 
+/// Throws core::InputError before any tracing for a run estimated above 5e9 wall hits: per ray the path
+/// over the mean free path 4V/S (at least 1 m when the mesh has open edges; 1 m when no enclosure holds a
+/// source), or the bounces until Russian roulette ends it, whichever is fewer.
 RoomSimulation simulateRoom(const room::Room& room, const RoomSimulationOptions& options);
 
 /// The Eyring reverberation time per band of `room` (area-weighted mean absorption of its triangles, its
