@@ -9,9 +9,11 @@ the door or the rooms?"), each scene written into a temporary folder and run thr
          0.8 m behind it) G and the early energy against the wave's. --damped-b gives room B's walls, floor
          and ceiling an absorption of 0.2 (scattering 0.1): a room B whose modes overlap at 125 Hz.
   door   a 0.9 x 2.1 m door in a rigid wall (thin, or 0.2 m thick) standing in free field, no floor: a source
-         3 m from the door's centre at 0, 30 and 60 degrees from its normal, 20 listeners 1.5 and 3 m behind.
-         Per band (63-500 Hz) the energy summed over the listeners, WBSDF (and `none`) against the wave, after
-         the wave's free-field calibration (the same domain without the wall, wave minus `none`).
+         3 m from the door's centre at 0, 30, 60 and 80 degrees from its normal, 20 listeners 1.5 and 3 m behind.
+         Per band (63-500 Hz) the energy summed over the listeners, WBSDF (and `none`) against the wave's
+         through the door: the wave's free-field calibration taken out (the same domain without the wall, wave
+         minus `none`), and what the wave brings with the doorway shut (around the wall's ends) subtracted;
+         "shut" is that part, dB re the open door's.
 
 Usage: tools/door_wave_checks.py rooms [--damped-b] | door    (from the project folder, after the build)
 """
@@ -139,19 +141,33 @@ def door():
                for l in listeners for b in bands}
         print("free-field calibration, wave - none (mean over listeners): " +
               " ".join(f"{b} Hz {sum(cal[(l['name'], b)] for l in listeners) / len(listeners):+.2f}" for b in bands))
-        print("energy summed over the listeners behind the door, model - wave (dB); bands " + ", ".join(bands) + " Hz")
+        print("energy summed over the listeners behind the door, model - wave through the door (dB); bands " +
+              ", ".join(bands) + " Hz")
         for thickness in (0.0, 0.2):
-            for angle in (0, 30, 60):
+            # The same wall with the doorway shut: what reaches the listeners around the wall's ends (and
+            # the grid's boundary returns), taken out of the wave's energy so that the door alone is compared.
+            shut = wall(thickness) + [
+                {"polygon": {"name": "leaf", "material": "rigid",
+                             "vertices": [[0, -0.45, 0], [0, 0.45, 0], [0, 0.45, 2.1], [0, -0.45, 2.1]]}}
+                if thickness == 0.0 else
+                {"box": {"name": "leaf", "min": [-thickness / 2, -0.45, 0], "max": [thickness / 2, 0.45, 2.1],
+                         "materials": {"all": "rigid"}}}]
+            for angle in (0, 30, 60, 80):
                 fig = compare(scene(f"door-{thickness}-{angle}", wall(thickness), angle, True), folder,
                               "none,wbsdf,wave", ",".join(bands))
+                closed = compare(scene(f"shut-{thickness}-{angle}", shut, angle, False), folder, "none,wave",
+                                 ",".join(bands))
                 cells = []
                 for b in bands:
-                    wave = sum(10 ** ((fig[(l["name"], "wave", b, "g_db")] - cal[(l["name"], b)]) / 10) for l in listeners)
+                    def wave_energy(f):
+                        return sum(10 ** ((f[(l["name"], "wave", b, "g_db")] - cal[(l["name"], b)]) / 10) for l in listeners)
+                    opened, leak = wave_energy(fig), wave_energy(closed)
                     per = {m: sum(10 ** (fig[(l["name"], m, b, "g_db")] / 10) for l in listeners
                                   if (l["name"], m, b, "g_db") in fig) for m in ("wbsdf", "none")}
-                    cells.append(f"wbsdf {10 * math.log10(per['wbsdf'] / wave):+.2f} none {10 * math.log10(per['none'] / wave):+.2f}")
+                    level = {m: f"{10 * math.log10(e / (opened - leak)):+.2f}" if e > 0.0 and opened > leak else "-"
+                             for m, e in per.items()}
+                    cells.append(f"wbsdf {level['wbsdf']} none {level['none']} (shut {10 * math.log10(leak / opened):+.1f})")
                 print(f"  wall {'thin' if thickness == 0 else '0.2 m'}, source at {angle:2d} deg: " + " | ".join(cells))
-
 
 if __name__ == "__main__":
     if sys.argv[1:] in (["-h"], ["--help"]):
