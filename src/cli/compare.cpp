@@ -250,8 +250,8 @@ Runner addCompareCommand(CLI::App& app, CommonOptions& common) {
       "diffraction none, utd and wbsdf, same rays and seed, per listener and octave band: G (strength, dB re "
       "the free-field energy of the same source at 10 m, ISO 3382-1), early (the energy in the 20 ms from the "
       "direct-sound time, same reference, the window opened R/c + 1/(band width) sooner for the spread of the "
-      "listener sphere and of the wave reference's band filter), EDT, T30, C50, C80. The free-field aperture reference (exact) is "
-      "shown only for listeners beyond the door's plane from the source (the direct sound through the door, "
+      "listener sphere and of the wave reference's band filter), EDT, T30, C50, C80. The free-field aperture "
+      "reference (exact) is shown only for listeners beyond the door's plane from the source (the direct sound through the door, "
       "read beside the early energy); for the others the table says why. --models ...,wave adds the FDTD "
       "wave reference (as `diffray wave`, as long as the ray models' IR) and each ray model's difference from "
       "it (dB; % for EDT and T30).");
