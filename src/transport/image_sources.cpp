@@ -58,6 +58,9 @@ struct Validator {
     const double tol = 1e-6 * geometry.extent();
     Vec3 x = listener;
     triangles.assign(planes.size(), -1);
+    std::vector<Vec3> path(planes.size() + 2);  // source, the reflection points in order, listener
+    path.front() = source;
+    path.back() = listener;
     std::vector<int> here;  // the planes reflected at x so far: each once (A, B, A at one edge point is A∘B∘A = B)
     for (int k = static_cast<int>(planes.size()) - 1; k >= 0; --k) {
       const MirrorPlane& pl = geometry.planes()[planes[k]];
@@ -72,6 +75,7 @@ struct Validator {
         const int tri = triangleOn(planes[k], x, tol);
         if (tri < 0) return false;
         triangles[k] = tri;
+        path[k + 1] = x;
         here.push_back(planes[k]);
         continue;
       }
@@ -86,6 +90,7 @@ struct Validator {
       if (tri < 0) return false;
       triangles[k] = tri;
       x += s * to_image;
+      path[k + 1] = x;
       here.assign(1, planes[k]);
     }
     const Vec3 to_source = source - x;
@@ -95,7 +100,7 @@ struct Validator {
     const int blocker = firstSurface(x, to_source / dist, dist - tol, t);
     if (blocker >= 0) return false;
     first_leg_dir = -to_source / dist;  // leaving the source
-    return !blockedUnseen(source, listener, images, planes, tol);
+    return !blockedUnseen(path, planes, tol);
   }
 
   // Whether a surface blocks the path where the intersector cannot see it. The intersector misses a
@@ -107,26 +112,15 @@ struct Validator {
   // side of this one, which is their limit. A surface behind the mirror (a convex corner's other face)
   // leaves the path the limit of valid ones on one side, and it stays. A blocking opening (the WBSDF's
   // occluders, whose triangles are no mirrors for the rays' sake) blocks wherever a leg crosses it, edges
-  // included. The path's points are rebuilt from the images: reflection k lies where the line from point
-  // k+1 to image k meets plane k.
-  bool blockedUnseen(const Vec3& source, const Vec3& listener, const std::vector<Vec3>& images,
-                     const std::vector<int>& planes, double tol) const {
-    std::vector<Vec3> path(planes.size() + 2);
-    path.front() = source;
-    path.back() = listener;
-    for (int k = static_cast<int>(planes.size()) - 1; k >= 0; --k) {
-      const MirrorPlane& pl = geometry.planes()[planes[k]];
-      const Vec3& from = path[k + 2];
-      const Vec3 to_image = images[k] - from;
-      const double denom = pl.normal.dot(to_image);
-      path[k + 1] = std::abs(denom) < 1e-300 ? from : from + (pl.offset - pl.normal.dot(from)) / denom * to_image;
-    }
+  // included. `path` holds the source, the reflection points (path[k + 1] on plane k) and the listener.
+  bool blockedUnseen(const std::vector<Vec3>& path, const std::vector<int>& planes, double tol) const {
     for (std::size_t tri = 0; tri < room.mesh.triangles.size(); ++tri) {
       const bool masked = blocking && (*blocking)[tri];
-      if (opening[geometry.triangle(static_cast<int>(tri)).material] && !masked) continue;
+      const TrianglePlane& tp = geometry.triangle(static_cast<int>(tri));
+      if (opening[tp.material] && !masked) continue;
       const auto& tv = room.mesh.triangles[tri];
       const Vec3 &a = room.mesh.vertices[tv[0]], &b = room.mesh.vertices[tv[1]], &c = room.mesh.vertices[tv[2]];
-      const Vec3 n = (b - a).cross(c - a).normalized();
+      const Vec3& n = tp.normal;
       int side = 0;  // the side of the last point off the plane
       for (std::size_t i = 0; i < path.size(); ++i) {
         const double d = n.dot(path[i] - a);
